@@ -1,0 +1,1 @@
+"""jointdyn: planar multibody dynamics with ideal, clearance and lubricated joints."""

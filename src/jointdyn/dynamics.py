@@ -1,0 +1,222 @@
+"""Equations of motion in absolute coordinates (compiled hot path).
+
+For n coordinates q (x, y, φ per body) and m constraint rows:
+
+    M q̈ = Q(t, q, q̇) + Φ_qᵀ λ,    Φ_q q̈ = γ − 2a Φ̇ − a² Φ        [T3, T4, T10]
+
+M is diagonal (centre-of-mass frames), so λ comes from the m×m Schur complement
+(Φ_q M⁻¹ Φ_qᵀ) λ = γ̂ − Φ_q M⁻¹ Q, solved by Cholesky, and q̈ = M⁻¹(Q + Φ_qᵀ λ) [T10].
+a ≥ 0 is the Baumgarte rate [1/s] (critically damped form, α = a, β = a). The compiled
+integrators also project (q, q̇) onto Φ = 0, Φ̇ = 0 after every accepted step [T11].
+
+The packed system ``P`` (see :class:`jointdyn.system.System.packed`) is the tuple
+(minv, Q0, cint, creal, fint, freal, tables, m, stab).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from .forces.elements import NOUT, eval_forces
+from .joints.constraints import eval_constraints
+
+OK = 0
+SINGULAR = 1  # constraint Jacobian lost rank (lock-up or redundant joint)
+NONFINITE = 2  # NaN or inf in the accelerations
+
+
+@njit(cache=True)
+def cholesky_solve(S, b):
+    """Solve S x = b in place for symmetric positive definite S (destroys S, b -> x).
+
+    Returns False if S is not positive definite to working precision."""
+    m = S.shape[0]
+    scale = 0.0
+    for i in range(m):
+        scale = max(scale, abs(S[i, i]))
+    for j in range(m):
+        d = S[j, j]
+        for k in range(j):
+            d -= S[j, k] * S[j, k]
+        if not d > 1e-13 * scale:
+            return False
+        d = np.sqrt(d)
+        S[j, j] = d
+        for i in range(j + 1, m):
+            s = S[i, j]
+            for k in range(j):
+                s -= S[i, k] * S[j, k]
+            S[i, j] = s / d
+    for i in range(m):
+        s = b[i]
+        for k in range(i):
+            s -= S[i, k] * b[k]
+        b[i] = s / S[i, i]
+    for i in range(m - 1, -1, -1):
+        s = b[i]
+        for k in range(i + 1, m):
+            s -= S[k, i] * b[k]
+        b[i] = s / S[i, i]
+    return True
+
+
+@njit(cache=True)
+def _schur(J, minv, m, n):
+    S = np.zeros((m, m))
+    for a in range(m):
+        for b in range(a, m):
+            s = 0.0
+            for c in range(n):
+                s += J[a, c] * minv[c] * J[b, c]
+            S[a, b] = s
+            S[b, a] = s
+    return S
+
+
+@njit(cache=True)
+def accelerations(t, q, qd, mem, P, qdd, lam, eout):
+    """Solve the equations of motion for q̈ and λ at (t, q, q̇) [T10]; fill element outputs."""
+    minv, Q0, cint, creal, fint, freal, tables, m, stab = P
+    n = q.shape[0]
+    Q = Q0.copy()
+    status = eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
+    if m > 0:
+        Phi = np.empty(m)
+        J = np.empty((m, n))
+        Phit = np.empty(m)
+        gam = np.empty(m)
+        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        a = stab[0]
+        if a > 0.0:
+            for r in range(m):
+                phid = Phit[r]
+                for c in range(n):
+                    phid += J[r, c] * qd[c]
+                gam[r] -= 2.0 * a * phid + a * a * Phi[r]
+        S = _schur(J, minv, m, n)
+        for r in range(m):
+            s = gam[r]
+            for c in range(n):
+                s -= J[r, c] * minv[c] * Q[c]
+            lam[r] = s
+        if not cholesky_solve(S, lam):
+            return SINGULAR
+        for c in range(n):
+            s = Q[c]
+            for r in range(m):
+                s += J[r, c] * lam[r]
+            qdd[c] = minv[c] * s
+    else:
+        for c in range(n):
+            qdd[c] = minv[c] * Q[c]
+    for c in range(n):
+        if not np.isfinite(qdd[c]):
+            return NONFINITE
+    return status
+
+
+@njit(cache=True)
+def rhs(t, y, mem, P, ydot):
+    """First-order form y = [q, q̇], ẏ = [q̇, q̈]. Returns a status code (0 = ok)."""
+    n = y.shape[0] // 2
+    m = P[7]
+    lam = np.empty(max(m, 1))
+    eout = np.empty((P[4].shape[0], NOUT))
+    qdd = ydot[n:]
+    ydot[:n] = y[n:]
+    return accelerations(t, y[:n], y[n:], mem, P, qdd, lam, eout)
+
+
+@njit(cache=True)
+def project(t, y, P, tol):
+    """Project y = [q, q̇] onto Φ = 0 (Gauss–Newton, M-weighted) and Φ̇ = 0 [T11].
+
+    Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
+    minv, Q0, cint, creal, fint, freal, tables, m, stab = P
+    if m == 0:
+        return 0.0
+    n = y.shape[0] // 2
+    q = y[:n]
+    qd = y[n:]
+    Phi = np.empty(m)
+    J = np.empty((m, n))
+    Phit = np.empty(m)
+    gam = np.empty(m)
+    res = 0.0
+    for it in range(6):
+        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        res = 0.0
+        for r in range(m):
+            res = max(res, abs(Phi[r]))
+        if res <= tol:
+            break
+        S = _schur(J, minv, m, n)
+        x = Phi.copy()
+        if not cholesky_solve(S, x):
+            return -1.0
+        for c in range(n):
+            s = 0.0
+            for r in range(m):
+                s += J[r, c] * x[r]
+            q[c] -= minv[c] * s
+    eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+    v = np.empty(m)
+    for r in range(m):
+        s = Phit[r]
+        for c in range(n):
+            s += J[r, c] * qd[c]
+        v[r] = s
+    S = _schur(J, minv, m, n)
+    if not cholesky_solve(S, v):
+        return -1.0
+    for c in range(n):
+        s = 0.0
+        for r in range(m):
+            s += J[r, c] * v[r]
+        qd[c] -= minv[c] * s
+    return res
+
+
+@njit(cache=True)
+def constraint_residuals(t, y, P):
+    """max |Φ| [m or rad] and max |Φ̇| [m/s or rad/s] at y (the drift report)."""
+    minv, Q0, cint, creal, fint, freal, tables, m, stab = P
+    if m == 0:
+        return 0.0, 0.0
+    n = y.shape[0] // 2
+    Phi = np.empty(m)
+    J = np.empty((m, n))
+    Phit = np.empty(m)
+    gam = np.empty(m)
+    eval_constraints(t, y[:n], y[n:], cint, creal, Phi, J, Phit, gam)
+    p = 0.0
+    v = 0.0
+    for r in range(m):
+        p = max(p, abs(Phi[r]))
+        s = Phit[r]
+        for c in range(n):
+            s += J[r, c] * y[n + c]
+        v = max(v, abs(s))
+    return p, v
+
+
+@njit(cache=True)
+def outputs(ts, ys, mems, P):
+    """Accelerations, multipliers and element outputs at saved states (post-processing)."""
+    nt = ts.shape[0]
+    n = ys.shape[1] // 2
+    m = P[7]
+    nf = P[4].shape[0]
+    qdd = np.zeros((nt, n))
+    lam = np.zeros((nt, max(m, 1)))
+    eout = np.zeros((nt, nf, NOUT))
+    drift = np.zeros((nt, 2))
+    for i in range(nt):
+        q = ys[i, :n].copy()
+        qd = ys[i, n:].copy()
+        accelerations(ts[i], q, qd, mems[i], P, qdd[i], lam[i], eout[i])
+        p, v = constraint_residuals(ts[i], ys[i], P)
+        drift[i, 0] = p
+        drift[i, 1] = v
+    return qdd, lam[:, :m], eout, drift

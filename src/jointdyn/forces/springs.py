@@ -1,0 +1,70 @@
+"""Linear spring–damper between two body points."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+from numba import njit
+
+from ..kinematics import point_kinematics
+from .transfer import apply_pair, pair_power
+
+SPRING_DAMPER = 0
+
+
+@dataclass(frozen=True)
+class SpringDamper:
+    """Point-to-point spring–damper [T9]: F_j = −[k (ℓ − ℓ₀) + d ℓ̇] u, u = (P_j − P_i)/ℓ."""
+
+    body_i: str
+    point_i: str
+    body_j: str
+    point_j: str
+    stiffness: float
+    """k [N/m]"""
+    damping: float = 0.0
+    """d [N·s/m]"""
+    free_length: float = 0.0
+    """ℓ₀ [m]"""
+    code: ClassVar[int] = SPRING_DAMPER
+
+    def params(self):
+        return (self.stiffness, self.damping, self.free_length)
+
+    def validate(self):
+        for name, v, unit in (("stiffness", self.stiffness, "N/m"),
+                              ("damping", self.damping, "N·s/m"),
+                              ("free_length", self.free_length, "m")):
+            if not math.isfinite(v) or v < 0:
+                raise ValueError(f"SpringDamper.{name} = {v!r} [{unit}]: must be finite and ≥ 0")
+
+
+@njit(cache=True)
+def spring_damper(q, qd, bi, bj, r, Q, out):
+    """Apply the spring–damper of real-parameter row r [T9]; fill ``out`` (length ≥ 8)."""
+    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, r[0], r[1])
+    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, r[2], r[3])
+    dx = pjx - pix
+    dy = pjy - piy
+    ell = math.sqrt(dx * dx + dy * dy)
+    if ell > 0.0:
+        ux = dx / ell
+        uy = dy / ell
+    else:
+        ux = 1.0
+        uy = 0.0
+    elld = ux * (vjx - vix) + uy * (vjy - viy)
+    f = -(r[4] * (ell - r[6]) + r[5] * elld)
+    fx = f * ux
+    fy = f * uy
+    apply_pair(Q, bi, bj, fx, fy, sjx, sjy, six + dx, siy + dy)
+    out[0] = dx
+    out[1] = dy
+    out[2] = ell
+    out[3] = elld
+    out[4] = fx
+    out[5] = fy
+    out[6] = pair_power(qd, bi, bj, fx, fy, sjx, sjy, six + dx, siy + dy)
+    out[7] = 0.0

@@ -1,0 +1,39 @@
+"""Scatter a force pair into the generalised force vector (compiled).
+
+A force **F** applied to body j at a point with arm a_j from its centre of mass, and −**F** to
+body i at the same world point (arm a_i from body i's centre), gives
+Q_j += [F_x, F_y, a_j × F], Q_i += [−F_x, −F_y, −(a_i × F)] [T8]. Both forces act on the same
+line, so the pair has no net moment (Newton's third law, spec §7 eqs 20–22 corrected).
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+
+@njit(cache=True)
+def apply_pair(Q, bi, bj, fx, fy, ajx, ajy, aix, aiy):
+    """Add **F** on body j (arm a_j) and −**F** on body i (arm a_i) to Q [T8]."""
+    if bj >= 0:
+        k = 3 * bj
+        Q[k] += fx
+        Q[k + 1] += fy
+        Q[k + 2] += ajx * fy - ajy * fx
+    if bi >= 0:
+        k = 3 * bi
+        Q[k] -= fx
+        Q[k + 1] -= fy
+        Q[k + 2] -= aix * fy - aiy * fx
+
+
+@njit(cache=True)
+def pair_power(qd, bi, bj, fx, fy, ajx, ajy, aix, aiy):
+    """Power the pair delivers to the two bodies, Σ Qᵀq̇ [W] (negative = dissipated)."""
+    p = 0.0
+    if bj >= 0:
+        k = 3 * bj
+        p += fx * qd[k] + fy * qd[k + 1] + (ajx * fy - ajy * fx) * qd[k + 2]
+    if bi >= 0:
+        k = 3 * bi
+        p -= fx * qd[k] + fy * qd[k + 1] + (aix * fy - aiy * fx) * qd[k + 2]
+    return p

@@ -1,0 +1,64 @@
+"""Pieces shared by the compiled integrators: error norm, dense output, accepted-step hooks."""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..dynamics import project
+from ..forces.elements import advance_memory
+
+# status codes of the compiled integrators (messages in jointdyn.simulate)
+OK = 0
+STEP_TOO_SMALL = 1
+MAX_STEPS = 2
+RHS_FAILED = 3
+MEMORY_FAILED = 4
+PROJECTION_FAILED = 5
+
+
+@njit(cache=True)
+def error_norm(err, y0, y1, rtol, atol):
+    """RMS of err_i / (atol + rtol·max(|y0_i|, |y1_i|)) (Hairer–Wanner)."""
+    s = 0.0
+    n = err.shape[0]
+    for i in range(n):
+        sc = atol + rtol * max(abs(y0[i]), abs(y1[i]))
+        e = err[i] / sc
+        s += e * e
+    return np.sqrt(s / n)
+
+
+@njit(cache=True)
+def hermite(y0, f0, y1, f1, h, th, out):
+    """Cubic Hermite interpolation on [t, t+h] at fraction th (4th-order accurate state)."""
+    h00 = (1.0 + 2.0 * th) * (1.0 - th) ** 2
+    h10 = th * (1.0 - th) ** 2
+    h01 = th * th * (3.0 - 2.0 * th)
+    h11 = th * th * (th - 1.0)
+    for i in range(y0.shape[0]):
+        out[i] = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
+
+
+@njit(cache=True)
+def write_dense(t0, y0, f0, t1, y1, f1, mem, t_out, iout, Y, MEM):
+    """Write every output time in (t0, t1] by Hermite interpolation; returns the next index."""
+    h = t1 - t0
+    while iout < t_out.shape[0] and t_out[iout] <= t1 + 1e-15 * abs(t1):
+        th = (t_out[iout] - t0) / h if h > 0 else 1.0
+        hermite(y0, f0, y1, f1, h, min(max(th, 0.0), 1.0), Y[iout])
+        MEM[iout] = mem
+        iout += 1
+    return iout
+
+
+@njit(cache=True)
+def accept_hooks(t, y, mem, P, do_project):
+    """After an accepted step: project on the constraints, then update element memory."""
+    if do_project and P[7] > 0:
+        if project(t, y, P, 1e-12) < 0.0:
+            return PROJECTION_FAILED
+    n = y.shape[0] // 2
+    if advance_memory(t, y[:n], y[n:], mem, P[4], P[5], P[6]) != 0:
+        return MEMORY_FAILED
+    return OK

@@ -1,0 +1,209 @@
+"""Ideal joints as kinematic constraints Φ(q, t) = 0 (paper eqs 10–11).
+
+Each constraint adds rows to Φ, to its Jacobian Φ_q, to Φ_t and to the acceleration
+right-hand side γ (Φ_q q̈ = γ) [T4]. The multipliers λ enter the equations of motion as
+M q̈ = Q + Φ_qᵀ λ [T3], so Φ_qᵀ λ is the generalised constraint force. What λ means for each
+constraint type is stated in its docstring and tested in ``tests/test_constraints.py``.
+
+Implementer contract for a new constraint type:
+1. a frozen dataclass below with its fields (they are the model-file schema) and ``rows``;
+2. a branch in :func:`eval_constraints` filling Φ, Φ_q, Φ_t and γ for its rows, citing its tag;
+3. an entry in :data:`CONSTRAINTS`; the finite-difference tests then cover it automatically.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+from numba import njit
+
+from ..kinematics import body_state, point_kinematics
+
+REVOLUTE = 0
+TRANSLATIONAL = 1
+ANGLE_DRIVER = 2
+
+
+@dataclass(frozen=True)
+class Revolute:
+    """Ideal pin: point ``point_i`` of ``body_i`` coincides with ``point_j`` of ``body_j`` [T5].
+
+    Φ = (r_i + A_i s'_i) − (r_j + A_j s'_j). λ = (λ_x, λ_y) is the reaction force the joint
+    applies to body i, world frame [N]; body j receives −λ.
+    """
+
+    body_i: str
+    point_i: str
+    body_j: str
+    point_j: str
+    code: ClassVar[int] = REVOLUTE
+    rows: ClassVar[int] = 2
+
+
+@dataclass(frozen=True)
+class Translational:
+    """Ideal slider: ``point_j`` of body j moves on the line through ``point_i`` of body i along
+    the body-i direction ``axis`` (unit vector, local frame); relative rotation locked [T6].
+
+    Rows: Φ₁ = nᵀ(P_j − P_i) with n = A_i (ẑ × axis), Φ₂ = φ_j − φ_i − θ₀ (θ₀ taken from the
+    assembled configuration). λ₁ is the normal force on body j along n [N] (body i gets −λ₁ n,
+    moments from the points); λ₂ is the locking moment on body j [N·m] (−λ₂ on body i).
+    """
+
+    body_i: str
+    point_i: str
+    body_j: str
+    point_j: str
+    axis: tuple[float, float] = (1.0, 0.0)
+    """guide direction in body i's frame (normalised on compile) [-]"""
+    angle: float | None = None
+    """locked relative angle θ₀ = φ_j − φ_i; None takes it from the initial guess [rad]"""
+    code: ClassVar[int] = TRANSLATIONAL
+    rows: ClassVar[int] = 2
+
+
+@dataclass(frozen=True)
+class AngleDriver:
+    """Rheonomic driver: φ_j − φ_i = φ₀ + ω t + ½ α t² [T7].
+
+    ``body_i`` is the reference (usually ``"ground"``). λ is the driving moment the driver
+    applies to body j, positive counter-clockwise [N·m] (body i receives −λ).
+    """
+
+    body_i: str
+    body_j: str
+    phi0: float = 0.0
+    """initial relative angle [rad]"""
+    omega: float = 0.0
+    """constant angular speed [rad/s]"""
+    alpha: float = 0.0
+    """constant angular acceleration [rad/s²]"""
+    code: ClassVar[int] = ANGLE_DRIVER
+    rows: ClassVar[int] = 1
+
+
+CONSTRAINTS = {"revolute": Revolute, "translational": Translational, "angle_driver": AngleDriver}
+
+
+@njit(cache=True)
+def _add_point_jac(J, r, col_b, sign, sx, sy):
+    """Add sign·[I, B s'] (B s' = (−s_y, s_x)) of a body point to rows r, r+1 [T2]."""
+    if col_b < 0:
+        return
+    k = 3 * col_b
+    J[r, k] += sign
+    J[r + 1, k + 1] += sign
+    J[r, k + 2] += -sign * sy
+    J[r + 1, k + 2] += sign * sx
+
+
+@njit(cache=True)
+def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
+    """Fill Φ, Φ_q (J, zeroed here), Φ_t and γ with Φ_q q̈ = γ [T4–T7]."""
+    J[:, :] = 0.0
+    for k in range(cint.shape[0]):
+        typ = cint[k, 0]
+        bi = cint[k, 1]
+        bj = cint[k, 2]
+        r = cint[k, 3]
+        if typ == REVOLUTE:
+            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, 0], creal[k, 1])
+            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, 2], creal[k, 3])
+            wi = body_state(q, qd, bi)[5]
+            wj = body_state(q, qd, bj)[5]
+            Phi[r] = pix - pjx
+            Phi[r + 1] = piy - pjy
+            Phit[r] = 0.0
+            Phit[r + 1] = 0.0
+            _add_point_jac(J, r, bi, 1.0, six, siy)
+            _add_point_jac(J, r, bj, -1.0, sjx, sjy)
+            # γ = φ̇_i² A_i s'_i − φ̇_j² A_j s'_j  [T5]
+            gam[r] = wi * wi * six - wj * wj * sjx
+            gam[r + 1] = wi * wi * siy - wj * wj * sjy
+        elif typ == TRANSLATIONAL:
+            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, 0], creal[k, 1])
+            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, 2], creal[k, 3])
+            phii = body_state(q, qd, bi)[2]
+            wi = body_state(q, qd, bi)[5]
+            phij = body_state(q, qd, bj)[2]
+            wj = body_state(q, qd, bj)[5]
+            ci = math.cos(phii)
+            si = math.sin(phii)
+            # local normal n' = ẑ × axis; n = A_i n'; Bn = B_i n' = ẑ × n  [T6]
+            nlx = -creal[k, 5]
+            nly = creal[k, 4]
+            nx = ci * nlx - si * nly
+            ny = si * nlx + ci * nly
+            bnx = -ny
+            bny = nx
+            dx = pjx - pix
+            dy = pjy - piy
+            ddx = vjx - vix
+            ddy = vjy - viy
+            Phi[r] = nx * dx + ny * dy
+            Phit[r] = 0.0
+            if bj >= 0:
+                kj = 3 * bj
+                J[r, kj] += nx
+                J[r, kj + 1] += ny
+                J[r, kj + 2] += -nx * sjy + ny * sjx
+            if bi >= 0:
+                ki = 3 * bi
+                J[r, ki] += -nx
+                J[r, ki + 1] += -ny
+                J[r, ki + 2] += (bnx * dx + bny * dy) - (-nx * siy + ny * six)
+            # γ = φ̇_i² nᵀd − 2φ̇_i (B_i n')ᵀ ḋ + φ̇_j² nᵀ s_j − φ̇_i² nᵀ s_i  [T6]
+            gam[r] = (wi * wi * (nx * dx + ny * dy) - 2.0 * wi * (bnx * ddx + bny * ddy)
+                      + wj * wj * (nx * sjx + ny * sjy) - wi * wi * (nx * six + ny * siy))
+            Phi[r + 1] = phij - phii - creal[k, 6]
+            Phit[r + 1] = 0.0
+            gam[r + 1] = 0.0
+            if bj >= 0:
+                J[r + 1, 3 * bj + 2] += 1.0
+            if bi >= 0:
+                J[r + 1, 3 * bi + 2] += -1.0
+        elif typ == ANGLE_DRIVER:
+            phii = body_state(q, qd, bi)[2]
+            phij = body_state(q, qd, bj)[2]
+            phi0 = creal[k, 4]
+            om = creal[k, 5]
+            al = creal[k, 6]
+            # Φ = φ_j − φ_i − (φ₀ + ωt + ½αt²), Φ_t = −(ω + αt), γ = α  [T7]
+            Phi[r] = phij - phii - (phi0 + om * t + 0.5 * al * t * t)
+            Phit[r] = -(om + al * t)
+            gam[r] = al
+            if bj >= 0:
+                J[r, 3 * bj + 2] += 1.0
+            if bi >= 0:
+                J[r, 3 * bi + 2] += -1.0
+
+
+def constraint_table(constraints, body_index, point_of, angle_of):
+    """Flatten constraint dataclasses into (cint, creal, total rows).
+
+    ``body_index(name) -> int`` (−1 for ground), ``point_of(body, point) -> (ξ, η)`` [m],
+    ``angle_of(body) -> φ`` of the initial guess [rad].
+    """
+    cint = np.zeros((len(constraints), 4), dtype=np.int64)
+    creal = np.zeros((len(constraints), 8))
+    row = 0
+    for k, c in enumerate(constraints):
+        cint[k, 0] = c.code
+        cint[k, 1] = body_index(c.body_i)
+        cint[k, 2] = body_index(c.body_j)
+        cint[k, 3] = row
+        row += c.rows
+        if isinstance(c, (Revolute, Translational)):
+            creal[k, 0:2] = point_of(c.body_i, c.point_i)
+            creal[k, 2:4] = point_of(c.body_j, c.point_j)
+        if isinstance(c, Translational):
+            ax = np.asarray(c.axis, dtype=float)
+            creal[k, 4:6] = ax / np.hypot(*ax)
+            th0 = c.angle if c.angle is not None else angle_of(c.body_j) - angle_of(c.body_i)
+            creal[k, 6] = th0
+        if isinstance(c, AngleDriver):
+            creal[k, 4:7] = (c.phi0, c.omega, c.alpha)
+    return cint, creal, row

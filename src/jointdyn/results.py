@@ -1,0 +1,96 @@
+"""Simulation results: time-first arrays plus provenance; save as netCDF, export CSV."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from importlib.metadata import version as _pkg_version
+
+import numpy as np
+
+from .forces.elements import OUT_COLUMNS
+from .system import System
+
+
+def _version() -> str:
+    try:
+        return _pkg_version("jointdyn")
+    except Exception:  # pragma: no cover - running from a source tree
+        return "unknown"
+
+
+@dataclass
+class Results:
+    """Arrays are time-first: ``t`` (n_t,) [s], ``y`` (n_t, 2n) = [q, q̇] (SI), ``qdd`` (n_t, n),
+    ``lam`` (n_t, m) multipliers (meaning per constraint type, see ``joints.constraints``),
+    ``eout`` (n_t, n_elements, len(OUT_COLUMNS)) element outputs, ``drift`` (n_t, 2) =
+    max |Φ| [m or rad] and max |Φ̇| [m/s or rad/s]."""
+
+    system: System
+    t: np.ndarray
+    y: np.ndarray
+    mem: np.ndarray
+    qdd: np.ndarray
+    lam: np.ndarray
+    eout: np.ndarray
+    drift: np.ndarray
+    stats: dict
+    wall_time: float
+    config: dict
+    status: int = 0
+    meta: dict = field(default_factory=dict)
+
+    @property
+    def q(self) -> np.ndarray:
+        return self.y[:, : self.system.n]
+
+    @property
+    def qd(self) -> np.ndarray:
+        return self.y[:, self.system.n:]
+
+    def coordinate(self, body: str, which: str) -> np.ndarray:
+        """Time series of ``body``'s ``x``, ``y`` or ``phi`` [m or rad]."""
+        return self.q[:, 3 * self.system.body_index(body) + {"x": 0, "y": 1, "phi": 2}[which]]
+
+    def multipliers(self, constraint: str) -> np.ndarray:
+        """λ rows of a named constraint, (n_t, rows)."""
+        return self.lam[:, self.system.rows_of(constraint)]
+
+    def element(self, name: str, column: str) -> np.ndarray:
+        """An element output column (see ``OUT_COLUMNS``) over time."""
+        k = self.system.element_names.index(name)
+        return self.eout[:, k, OUT_COLUMNS.index(column)]
+
+    def to_dataset(self):
+        """xarray Dataset with the provenance in its attributes."""
+        import xarray as xr
+
+        s = self.system
+        coords = {"time": self.t, "coordinate": s.coordinate_labels(),
+                  "row": [f"{n}[{r - a}]" for n, (a, b) in zip(s.constraint_names, s.constraint_rows)
+                          for r in range(a, b)],
+                  "element": list(s.element_names), "output": list(OUT_COLUMNS)}
+        ds = xr.Dataset(
+            {"q": (("time", "coordinate"), self.q), "qd": (("time", "coordinate"), self.qd),
+             "qdd": (("time", "coordinate"), self.qdd), "lam": (("time", "row"), self.lam),
+             "element_outputs": (("time", "element", "output"), self.eout),
+             "drift_position": ("time", self.drift[:, 0]), "drift_velocity": ("time", self.drift[:, 1])},
+            coords=coords)
+        ds["time"].attrs["units"] = "s"
+        ds.attrs.update({
+            "jointdyn_version": _version(), "model": json.dumps(s.model_dict, default=list),
+            "config": json.dumps(self.config, default=str), "stats": json.dumps(self.stats),
+            "wall_time_s": self.wall_time, "status": self.status, "meta": json.dumps(self.meta, default=str),
+        })
+        return ds
+
+    def save(self, path) -> None:
+        """Write netCDF4 (h5netcdf engine)."""
+        self.to_dataset().to_netcdf(path, engine="h5netcdf")
+
+
+def load(path):
+    """Read a results file written by :meth:`Results.save` as an xarray Dataset."""
+    import xarray as xr
+
+    return xr.load_dataset(path, engine="h5netcdf")

@@ -1,0 +1,107 @@
+"""The front door: ``simulate(system, config) -> Results``."""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from .dynamics import outputs
+from .errors import SimulationError
+from .integrators import SOLVERS
+from .integrators.common import (MAX_STEPS, MEMORY_FAILED, OK, PROJECTION_FAILED, RHS_FAILED,
+                                 STEP_TOO_SMALL)
+from .results import Results
+from .system import System
+
+_MESSAGES = {
+    STEP_TOO_SMALL: "step size collapsed below 1e-14·t_end",
+    MAX_STEPS: "maximum number of steps reached (raise SimConfig.max_steps)",
+    RHS_FAILED: "the equations of motion could not be evaluated (singular constraint Jacobian or "
+                "non-finite accelerations)",
+    MEMORY_FAILED: "an element left its admissible range (e.g. film breakdown ξ ≥ 1 in a "
+                   "journal bearing without a contact law)",
+    PROJECTION_FAILED: "projection onto the constraints failed (singular constraint Jacobian)",
+}
+
+
+@dataclass(frozen=True)
+class SimConfig:
+    """How to integrate. Times in [s]."""
+
+    t_end: float
+    """end time [s], > 0"""
+    n_out: int = 1001
+    """number of equally spaced output samples on [0, t_end] (≥ 2)"""
+    solver: str = "dopri5"
+    """a name in ``jointdyn.integrators.SOLVERS``"""
+    rtol: float = 1e-8
+    """relative tolerance [-]"""
+    atol: float = 1e-10
+    """absolute tolerance, applied to every state component [SI of the component]"""
+    max_step: float = math.inf
+    """largest step [s]"""
+    first_step: float = 0.0
+    """initial step [s]; 0 = automatic"""
+    max_steps: int = 5_000_000
+    """accepted + rejected steps before giving up"""
+    baumgarte: float | None = None
+    """Baumgarte rate a [1/s] [T10]; None = 0 for projecting solvers, 1000 for scipy ones"""
+
+    def __post_init__(self):
+        if not (math.isfinite(self.t_end) and self.t_end > 0):
+            raise ValueError(f"SimConfig.t_end = {self.t_end!r} [s]: must be finite and > 0")
+        if self.n_out < 2:
+            raise ValueError(f"SimConfig.n_out = {self.n_out!r} [-]: must be ≥ 2")
+        if self.solver not in SOLVERS:
+            raise ValueError(f"SimConfig.solver = {self.solver!r}: unknown; valid: {sorted(SOLVERS)}")
+        for name in ("rtol", "atol"):
+            v = getattr(self, name)
+            if not (math.isfinite(v) and 0 < v < 1):
+                raise ValueError(f"SimConfig.{name} = {v!r} [-]: must be in (0, 1)")
+        if not self.max_step > 0:
+            raise ValueError(f"SimConfig.max_step = {self.max_step!r} [s]: must be > 0")
+        if self.baumgarte is not None and not (math.isfinite(self.baumgarte) and self.baumgarte >= 0):
+            raise ValueError(f"SimConfig.baumgarte = {self.baumgarte!r} [1/s]: must be ≥ 0")
+
+
+def simulate(system: System, config: SimConfig, progress=None) -> Results:
+    """Integrate ``system`` from its assembled initial state over [0, config.t_end].
+
+    Raises :class:`~jointdyn.errors.SimulationError` (carrying the partial results) if the
+    integration fails. ``progress`` is an optional callable ``(fraction) -> None`` [unused by
+    the compiled loop itself; called once at the end].
+    """
+    runner, projects, _ = SOLVERS[config.solver]
+    a = config.baumgarte if config.baumgarte is not None else (0.0 if projects else 1000.0)
+    P = system.packed(a)
+    t_out = np.linspace(0.0, config.t_end, config.n_out)
+    t0 = time.perf_counter()
+    if projects:
+        Y, MEM, nw, stats, status, t_reached = runner(
+            P, system.y0, system.mem0, 0.0, t_out, config.rtol, config.atol, config.first_step,
+            config.max_step, config.max_steps, True)
+    else:
+        Y, MEM, nw, stats, status, t_reached = runner(
+            P, system.y0, system.mem0, 0.0, t_out, config.rtol, config.atol,
+            max_step=config.max_step)
+    wall = time.perf_counter() - t0
+    ts = t_out[:nw]
+    qdd, lam, eout, drift = outputs(ts, Y[:nw], MEM[:nw], P)
+    res = Results(system=system, t=ts, y=Y[:nw], mem=MEM[:nw], qdd=qdd, lam=lam, eout=eout,
+                  drift=drift, stats={"rhs_evaluations": int(stats[0]), "accepted_steps": int(stats[1]),
+                                      "rejected_steps": int(stats[2]), "jacobians": int(stats[3])},
+                  wall_time=wall, config=asdict(config) | {"baumgarte": a}, status=int(status))
+    if progress is not None:
+        progress(1.0)
+    if status != OK:
+        raise SimulationError(f"simulation of {system.name!r} failed at t = {t_reached:.9g} s "
+                              f"with solver {config.solver!r}: {_MESSAGES.get(status, status)}; "
+                              f"{nw} of {len(t_out)} output samples were computed (kept in "
+                              f".results)", t_reached, res)
+    bad = ~np.isfinite(res.y).all(axis=1)
+    if bad.any():
+        raise SimulationError(f"non-finite state at t = {ts[bad][0]:.9g} s", ts[bad][0], res)
+    return res

@@ -1,0 +1,72 @@
+"""The compiled, frozen form of a model (flat arrays for the compiled kernels) and the state."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class System:
+    """Frozen, compiled mechanism. Build it with :meth:`jointdyn.model.Model.compile`.
+
+    Arrays (SI): ``minv`` (n,) inverse masses/inertias [1/kg, 1/(kg·m²)], ``q0_force`` (n,)
+    constant generalised forces (gravity) [N, N·m], constraint tables ``cint``/``creal``,
+    force-element tables ``fint``/``freal``, film ``tables`` (3-D), ``y0`` the assembled initial
+    state [q, q̇] and ``mem0`` the initial element memory.
+    """
+
+    name: str
+    body_names: tuple[str, ...]
+    constraint_names: tuple[str, ...]
+    constraint_rows: tuple[tuple[int, int], ...]
+    element_names: tuple[str, ...]
+    constraints: tuple
+    elements: tuple
+    minv: np.ndarray
+    q0_force: np.ndarray
+    cint: np.ndarray
+    creal: np.ndarray
+    fint: np.ndarray
+    freal: np.ndarray
+    tables: np.ndarray
+    n_rows: int
+    y0: np.ndarray
+    mem0: np.ndarray
+    gravity: tuple[float, float]
+    model_dict: dict = field(default_factory=dict, compare=False)
+
+    @property
+    def n(self) -> int:
+        """Number of coordinates (3 per moving body)."""
+        return self.minv.shape[0]
+
+    def packed(self, baumgarte: float = 0.0):
+        """Tuple handed to the compiled kernels (see :mod:`jointdyn.dynamics`)."""
+        return (self.minv, self.q0_force, self.cint, self.creal, self.fint, self.freal,
+                self.tables, int(self.n_rows), np.array([float(baumgarte)]))
+
+    def coordinate_labels(self) -> list[str]:
+        return [f"{b}.{c}" for b in self.body_names for c in ("x", "y", "phi")]
+
+    def body_index(self, name: str) -> int:
+        return self.body_names.index(name)
+
+    def rows_of(self, constraint: str) -> slice:
+        """Rows of λ belonging to a named constraint."""
+        try:
+            a, b = self.constraint_rows[self.constraint_names.index(constraint)]
+        except ValueError:
+            raise KeyError(f"no constraint named {constraint!r}; have {list(self.constraint_names)}")
+        return slice(a, b)
+
+
+@dataclass
+class State:
+    """Time, coordinates, velocities and element memory at one instant."""
+
+    t: float
+    q: np.ndarray
+    qd: np.ndarray
+    mem: np.ndarray
