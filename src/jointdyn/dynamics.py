@@ -202,8 +202,11 @@ def constraint_residuals(t, y, P):
 
 
 @njit(cache=True)
-def outputs(ts, ys, mems, P):
-    """Accelerations, multipliers and element outputs at saved states (post-processing)."""
+def outputs(ts, ys, mems, P, do_project):
+    """Accelerations, multipliers and element outputs at saved states (post-processing).
+
+    With ``do_project`` the (interpolated) output states are first projected on Φ = 0,
+    Φ̇ = 0 in place [T11], as the integrator does with its step states."""
     nt = ts.shape[0]
     n = ys.shape[1] // 2
     m = P[7]
@@ -213,6 +216,8 @@ def outputs(ts, ys, mems, P):
     eout = np.zeros((nt, nf, NOUT))
     drift = np.zeros((nt, 2))
     for i in range(nt):
+        if do_project and m > 0:
+            project(ts[i], ys[i], P, 1e-12)
         q = ys[i, :n].copy()
         qd = ys[i, n:].copy()
         accelerations(ts[i], q, qd, mems[i], P, qdd[i], lam[i], eout[i])

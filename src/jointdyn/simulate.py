@@ -67,35 +67,51 @@ class SimConfig:
             raise ValueError(f"SimConfig.baumgarte = {self.baumgarte!r} [1/s]: must be ≥ 0")
 
 
-def simulate(system: System, config: SimConfig, progress=None) -> Results:
+def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) -> Results:
     """Integrate ``system`` from its assembled initial state over [0, config.t_end].
 
-    Raises :class:`~jointdyn.errors.SimulationError` (carrying the partial results) if the
-    integration fails. ``progress`` is an optional callable ``(fraction) -> None`` [unused by
-    the compiled loop itself; called once at the end].
+    The run is split into ``chunks`` consecutive calls of the compiled integrator (state,
+    element memory and step size carried over); ``progress(fraction)`` is called after each.
+    Raises :class:`~jointdyn.errors.SimulationError` carrying the partial results if the
+    integration fails.
     """
     runner, projects, _ = SOLVERS[config.solver]
     a = config.baumgarte if config.baumgarte is not None else (0.0 if projects else 1000.0)
     P = system.packed(a)
     t_out = np.linspace(0.0, config.t_end, config.n_out)
+    parts = [p for p in np.array_split(np.arange(1, config.n_out), max(1, int(chunks))) if len(p)]
+    Ys, MEMs = [system.y0[None, :].copy()], [system.mem0[None].copy()]
+    stats = np.zeros(4, dtype=np.int64)
+    y, mem, t, h = system.y0.copy(), system.mem0.copy(), 0.0, config.first_step
+    status, t_reached = OK, 0.0
     t0 = time.perf_counter()
-    if projects:
-        Y, MEM, nw, stats, status, t_reached = runner(
-            P, system.y0, system.mem0, 0.0, t_out, config.rtol, config.atol, config.first_step,
-            config.max_step, config.max_steps, True)
-    else:
-        Y, MEM, nw, stats, status, t_reached = runner(
-            P, system.y0, system.mem0, 0.0, t_out, config.rtol, config.atol,
-            max_step=config.max_step)
+    for idx in parts:
+        tc = t_out[idx]
+        if projects:
+            Y, MEM, nw, st, status, t_reached, h = runner(
+                P, y, mem, t, tc, config.rtol, config.atol, h, config.max_step,
+                config.max_steps - int(stats[1] + stats[2]), True)
+        else:
+            Y, MEM, nw, st, status, t_reached, _ = runner(
+                P, y, mem, t, tc, config.rtol, config.atol, max_step=config.max_step)
+        stats += st
+        Ys.append(Y[:nw])
+        MEMs.append(MEM[:nw])
+        if status != OK or nw == 0:
+            break
+        y, mem, t = Y[nw - 1].copy(), MEM[nw - 1].copy(), tc[-1]
+        if progress is not None:
+            progress(t / config.t_end)
     wall = time.perf_counter() - t0
+    Y = np.ascontiguousarray(np.concatenate(Ys))
+    MEM = np.ascontiguousarray(np.concatenate(MEMs))
+    nw = Y.shape[0]
     ts = t_out[:nw]
-    qdd, lam, eout, drift = outputs(ts, Y[:nw], MEM[:nw], P)
-    res = Results(system=system, t=ts, y=Y[:nw], mem=MEM[:nw], qdd=qdd, lam=lam, eout=eout,
-                  drift=drift, stats={"rhs_evaluations": int(stats[0]), "accepted_steps": int(stats[1]),
-                                      "rejected_steps": int(stats[2]), "jacobians": int(stats[3])},
+    qdd, lam, eout, drift = outputs(ts, Y, MEM, P, projects)
+    res = Results(system=system, t=ts, y=Y, mem=MEM, qdd=qdd, lam=lam, eout=eout, drift=drift,
+                  stats={"rhs_evaluations": int(stats[0]), "accepted_steps": int(stats[1]),
+                         "rejected_steps": int(stats[2]), "jacobians": int(stats[3])},
                   wall_time=wall, config=asdict(config) | {"baumgarte": a}, status=int(status))
-    if progress is not None:
-        progress(1.0)
     if status != OK:
         raise SimulationError(f"simulation of {system.name!r} failed at t = {t_reached:.9g} s "
                               f"with solver {config.solver!r}: {_MESSAGES.get(status, status)}; "

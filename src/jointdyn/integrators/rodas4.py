@@ -120,7 +120,7 @@ def jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
 
 @njit(cache=True)
 def rodas4(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
-    """Integrate from t0 to t_out[-1]; returns (Y, MEM, n_written, stats, status, t_reached).
+    """Integrate from t0 to t_out[-1]; returns (Y, MEM, n_written, stats, status, t_reached, h_next).
 
     stats = [rhs evaluations, accepted steps, rejected steps, Jacobian evaluations]."""
     nn = y0.shape[0]
@@ -129,6 +129,8 @@ def rodas4(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
     Y = np.zeros((nout, nn))
     MEM = np.zeros((nout, mem0.shape[0], mem0.shape[1]))
     stats = np.zeros(4, dtype=np.int64)
+    h = h0 if h0 > 0 else 1e-6 * max(1.0, abs(t_out[-1] - t0))
+    h_prop = h
     mem = mem0.copy()
     y = y0.copy()
     t = t0
@@ -146,28 +148,28 @@ def rodas4(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
     yt = np.empty(nn); y1 = np.empty(nn); fw = np.empty(nn); work = np.empty(nn)
     st = accept_hooks(t, y, mem, P, do_project)
     if st != OK:
-        return Y, MEM, iout, stats, st, t
+        return Y, MEM, iout, stats, st, t, h
     if rhs(t, y, mem, P, f0) != 0:
-        return Y, MEM, iout, stats, RHS_FAILED, t
+        return Y, MEM, iout, stats, RHS_FAILED, t, h
     stats[0] += 1
-    h = h0 if h0 > 0 else 1e-6 * max(1.0, abs(t_end - t0))
     hmin = 1e-14 * max(1.0, abs(t_end))
     need_jac = True
     fail_status = OK
     while t < t_end:
         if stats[1] + stats[2] >= max_steps:
-            return Y, MEM, iout, stats, MAX_STEPS, t
+            return Y, MEM, iout, stats, MAX_STEPS, t, h
         if need_jac:
             if jacobian(t, y, f0, mem, P, Jm, ft, work, fw) != 0:
-                return Y, MEM, iout, stats, RHS_FAILED, t
+                return Y, MEM, iout, stats, RHS_FAILED, t, h
             stats[0] += nn + 1
             stats[3] += 1
             need_jac = False
         h = min(h, hmax, step_limit(y[:n], y[n:], mem, P[4], P[5]))
+        h_prop = h
         if t + h >= t_end - 1e-14 * abs(t_end):
             h = t_end - t
         if h < hmin:
-            return Y, MEM, iout, stats, STEP_TOO_SMALL if fail_status == OK else fail_status, t
+            return Y, MEM, iout, stats, STEP_TOO_SMALL if fail_status == OK else fail_status, t, h
         inv = 1.0 / (h * GAMMA)
         for i in range(nn):
             for j in range(nn):
@@ -230,10 +232,13 @@ def rodas4(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
         stats[1] += 1
         st = accept_hooks(t, y, mem, P, do_project)
         if st != OK:
-            return Y, MEM, iout, stats, st, t
+            return Y, MEM, iout, stats, st, t, h
         if rhs(t, y, mem, P, f0) != 0:
-            return Y, MEM, iout, stats, RHS_FAILED, t
+            return Y, MEM, iout, stats, RHS_FAILED, t, h
         stats[0] += 1
         need_jac = True
         h *= min(6.0, max(0.2, 0.9 * max(en, 1e-10) ** -0.25))
-    return Y, MEM, iout, stats, OK, t
+    if iout == nout:
+        Y[nout - 1] = y
+        MEM[nout - 1] = mem
+    return Y, MEM, iout, stats, OK, t, h_prop

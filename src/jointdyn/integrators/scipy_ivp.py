@@ -40,7 +40,7 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
     stats[3] = getattr(sol, "njev", 0)
     st = status[0] if status[0] != OK else (OK if sol.success else RHS_FAILED)
     t_reached = sol.t[-1] if len(sol.t) else t0
-    return Y, MEM, Y.shape[0], stats, st, t_reached
+    return Y, MEM, Y.shape[0], stats, st, t_reached, 0.0
 
 
 __all__ = ["scipy_ivp", "NMEM"]
