@@ -10,7 +10,8 @@ a ≥ 0 is the Baumgarte rate [1/s] (critically damped form, α = a, β = a). Th
 integrators also project (q, q̇) onto Φ = 0, Φ̇ = 0 after every accepted step [T11].
 
 The packed system ``P`` (see :class:`jointdyn.system.System.packed`) is the tuple
-(minv, Q0, cint, creal, fint, freal, tables, m, stab).
+(minv, Q0, cint, creal, fint, freal, tables, m, stab, ws); ``ws`` is a preallocated
+workspace (see :func:`workspace_size`) so that the right-hand side allocates nothing.
 """
 
 from __future__ import annotations
@@ -61,9 +62,13 @@ def cholesky_solve(S, b):
     return True
 
 
+def workspace_size(n: int, m: int, nf: int) -> int:
+    """Length of the float workspace used by :func:`accelerations` and :func:`rhs`."""
+    return n + 3 * m + m * n + m * m + max(m, 1) + nf * NOUT
+
+
 @njit(cache=True)
-def _schur(J, minv, m, n):
-    S = np.zeros((m, m))
+def _schur_into(S, J, minv, m, n):
     for a in range(m):
         for b in range(a, m):
             s = 0.0
@@ -75,17 +80,27 @@ def _schur(J, minv, m, n):
 
 
 @njit(cache=True)
+def _schur(J, minv, m, n):
+    return _schur_into(np.empty((m, m)), J, minv, m, n)
+
+
+@njit(cache=True)
 def accelerations(t, q, qd, mem, P, qdd, lam, eout):
     """Solve the equations of motion for q̈ and λ at (t, q, q̇) [T10]; fill element outputs."""
-    minv, Q0, cint, creal, fint, freal, tables, m, stab = P
+    minv, Q0, cint, creal, fint, freal, tables, m, stab, ws = P
     n = q.shape[0]
-    Q = Q0.copy()
+    Q = ws[:n]
+    Q[:] = Q0
     status = eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
     if m > 0:
-        Phi = np.empty(m)
-        J = np.empty((m, n))
-        Phit = np.empty(m)
-        gam = np.empty(m)
+        o = n
+        Phi = ws[o:o + m]
+        Phit = ws[o + m:o + 2 * m]
+        gam = ws[o + 2 * m:o + 3 * m]
+        o += 3 * m
+        J = ws[o:o + m * n].reshape((m, n))
+        o += m * n
+        S = ws[o:o + m * m].reshape((m, m))
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
         a = stab[0]
         if a > 0.0:
@@ -94,7 +109,7 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
                 for c in range(n):
                     phid += J[r, c] * qd[c]
                 gam[r] -= 2.0 * a * phid + a * a * Phi[r]
-        S = _schur(J, minv, m, n)
+        _schur_into(S, J, minv, m, n)
         for r in range(m):
             s = gam[r]
             for c in range(n):
@@ -121,8 +136,11 @@ def rhs(t, y, mem, P, ydot):
     """First-order form y = [q, q̇], ẏ = [q̇, q̈]. Returns a status code (0 = ok)."""
     n = y.shape[0] // 2
     m = P[7]
-    lam = np.empty(max(m, 1))
-    eout = np.empty((P[4].shape[0], NOUT))
+    ws = P[9]
+    o = n + 3 * m + m * n + m * m
+    lam = ws[o:o + max(m, 1)]
+    o += max(m, 1)
+    eout = ws[o:o + P[4].shape[0] * NOUT].reshape((P[4].shape[0], NOUT))
     qdd = ydot[n:]
     ydot[:n] = y[n:]
     return accelerations(t, y[:n], y[n:], mem, P, qdd, lam, eout)
@@ -133,7 +151,7 @@ def project(t, y, P, tol):
     """Project y = [q, q̇] onto Φ = 0 (Gauss–Newton, M-weighted) and Φ̇ = 0 [T11].
 
     Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
-    minv, Q0, cint, creal, fint, freal, tables, m, stab = P
+    minv, Q0, cint, creal, fint, freal, tables, m, stab, ws = P
     if m == 0:
         return 0.0
     n = y.shape[0] // 2
@@ -181,7 +199,7 @@ def project(t, y, P, tol):
 @njit(cache=True)
 def constraint_residuals(t, y, P):
     """max |Φ| [m or rad] and max |Φ̇| [m/s or rad/s] at y (the drift report)."""
-    minv, Q0, cint, creal, fint, freal, tables, m, stab = P
+    minv, Q0, cint, creal, fint, freal, tables, m, stab, ws = P
     if m == 0:
         return 0.0, 0.0
     n = y.shape[0] // 2

@@ -44,8 +44,11 @@ class System:
 
     def packed(self, baumgarte: float = 0.0):
         """Tuple handed to the compiled kernels (see :mod:`jointdyn.dynamics`)."""
+        from .dynamics import workspace_size
+
+        ws = np.zeros(workspace_size(self.n, self.n_rows, self.fint.shape[0]))
         return (self.minv, self.q0_force, self.cint, self.creal, self.fint, self.freal,
-                self.tables, int(self.n_rows), np.array([float(baumgarte)]))
+                self.tables, int(self.n_rows), np.array([float(baumgarte)]), ws)
 
     def coordinate_labels(self) -> list[str]:
         return [f"{b}.{c}" for b in self.body_names for c in ("x", "y", "phi")]

@@ -59,6 +59,5 @@ def accept_hooks(t, y, mem, P, do_project):
         if project(t, y, P, 1e-12) < 0.0:
             return PROJECTION_FAILED
     n = y.shape[0] // 2
-    if advance_memory(t, y[:n], y[n:], mem, P[4], P[5], P[6]) != 0:
-        return MEMORY_FAILED
-    return OK
+    # non-zero codes from the elements (≥ 10, e.g. FILM_BREAKDOWN + element) pass through
+    return advance_memory(t, y[:n], y[n:], mem, P[4], P[5], P[6])
