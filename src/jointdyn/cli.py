@@ -6,6 +6,7 @@ from pathlib import Path
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table
 
 app = typer.Typer(help="jointdyn: planar mechanisms with ideal, clearance and lubricated joints.",
@@ -55,6 +56,84 @@ def run(
     console.print(f"wrote {out}/results.nc, timeseries.csv, summary.json, moment.png")
 
 
+@app.command()
+def reproduce(
+    paper: str = typer.Argument(..., help="which paper: alshaer2005"),
+    out: Path = typer.Option(Path("out/alshaer2005"), help="output directory"),
+    quick: bool = typer.Option(False, help="1 revolution instead of 4 (CI smoke run)"),
+    beyond: bool = typer.Option(True, help="also run the beyond-the-paper cases"),
+):
+    """Run the paper's comparison (perfect, dry, Ott, π-film) and write figures + report.html."""
+    from .errors import SimulationError
+    from .reproduce import PAPER_CASES, BEYOND_CASES, reproduce_alshaer2005, summary_markdown
+
+    if paper != "alshaer2005":
+        raise typer.BadParameter(f"unknown paper {paper!r}; valid: ['alshaer2005']", param_hint="PAPER")
+    cases = PAPER_CASES + (BEYOND_CASES if beyond else ())
+    try:
+        with _progress("reproduce") as prog:
+            tasks = {c.name: prog.add_task(c.name, total=1.0) for c in cases}
+            runs = reproduce_alshaer2005(out, quick=quick, beyond=beyond,
+                                         progress=lambda name, f: prog.update(tasks[name], completed=f))
+    except (ValueError, SimulationError) as err:
+        console.print(f"[red]error:[/red] {err}")
+        raise typer.Exit(2)
+    console.print(summary_markdown(runs))
+    console.print(f"wrote {out}/report.html, summary.csv, <case>.csv and the figures")
+
+
+FILM_COLUMNS = ("xi", "xi_dot", "gamma", "gamma_dot", "omega_journal", "omega_bearing", "viscosity",
+                "length", "radius", "clearance")
+
+
+@app.command("film-force")
+def film_force_cmd(
+    states: Path = typer.Argument(..., help="CSV with columns " + ", ".join(FILM_COLUMNS) + " (SI, global rates)"),
+    model: str = typer.Option("alshaer2005", help="film model name (see `jointdyn list`)"),
+    out: Path = typer.Option(None, help="output CSV (default: stdout)"),
+):
+    """Film forces for a table of bearing states: appends Fr, Ft, Fx, Fy [N] (force on the journal)."""
+    import csv
+    import sys
+
+    import numpy as np
+
+    from .forces.film_models import film_forces
+
+    try:
+        with open(states, newline="") as f:
+            rows = list(csv.DictReader(f))
+        if not rows:
+            raise ValueError(f"{states}: no data rows")
+        missing = [c for c in FILM_COLUMNS if c not in rows[0]]
+        if missing:
+            raise ValueError(f"{states}: missing column(s) {missing}; required: {list(FILM_COLUMNS)}")
+        data = {}
+        for c in FILM_COLUMNS:
+            vals = []
+            for i, r in enumerate(rows):
+                try:
+                    vals.append(float(r[c]))
+                except ValueError:
+                    raise ValueError(f"{states}: row {i + 1}, column {c!r}: {r[c]!r} is not a number") from None
+            data[c] = np.array(vals)
+        for c, v in data.items():
+            bad = np.flatnonzero(~np.isfinite(v))
+            if bad.size:
+                raise ValueError(f"{states}: row {bad[0] + 1}, column {c!r}: non-finite value {v[bad[0]]!r}")
+        F = film_forces(model, *(data[c] for c in FILM_COLUMNS))
+    except (ValueError, OSError) as err:
+        console.print(f"[red]error:[/red] {escape(str(err))}")
+        raise typer.Exit(2)
+    fh = open(out, "w", newline="") if out else sys.stdout
+    w = csv.writer(fh)
+    w.writerow(list(rows[0].keys()) + ["Fr", "Ft", "Fx", "Fy"])
+    for i, r in enumerate(rows):
+        w.writerow(list(r.values()) + [f"{F[k][i]:.10g}" for k in ("Fr", "Ft", "Fx", "Fy")])
+    if out:
+        fh.close()
+
+
 @app.command("list")
 def list_registries():
     """Show the registries: constraints, force elements, solvers, models."""
@@ -68,7 +147,7 @@ def list_registries():
         tab.add_column("name")
         tab.add_column("description")
         for k, v in reg.items():
-            tab.add_row(k, (v.__doc__ or "").strip().splitlines()[0])
+            tab.add_row(k, escape((v.__doc__ or "").strip().splitlines()[0]))
         console.print(tab)
     tab = Table(title="solvers")
     tab.add_column("name")

@@ -10,6 +10,7 @@ import numpy as np
 
 from .dynamics import outputs
 from .errors import SimulationError
+from .forces.elements import FILM_BREAKDOWN
 from .integrators import SOLVERS
 from .integrators.common import (MAX_STEPS, MEMORY_FAILED, OK, PROJECTION_FAILED, RHS_FAILED,
                                  STEP_TOO_SMALL)
@@ -25,6 +26,31 @@ _MESSAGES = {
                    "journal bearing without a contact law)",
     PROJECTION_FAILED: "projection onto the constraints failed (singular constraint Jacobian)",
 }
+
+
+def _message(system: System, status: int) -> str:
+    if status >= FILM_BREAKDOWN:
+        name = system.element_names[status - FILM_BREAKDOWN]
+        return (f"film breakdown in element {name!r}: the journal reached the bearing wall (ξ ≥ 1, "
+                f"h_min ≤ 0) and the bearing has no contact law; give it `contact=` (mixed "
+                f"film/contact regime), or raise viscosity/clearance")
+    return _MESSAGES.get(status, f"status {status}")
+
+
+def _element_hint(system: System, P, t, y, mem) -> str:
+    """Point at journal elements that were at the bearing wall when the run failed."""
+    from .forces.journal import ClearanceJoint, JournalBearing
+
+    _, _, eout, _ = outputs(np.array([t]), y[None, :].copy(), mem[None].copy(), P, False)
+    hints = []
+    for k, (name, el) in enumerate(zip(system.element_names, system.elements)):
+        if isinstance(el, (JournalBearing, ClearanceJoint)):
+            xi = float(eout[0, k, 2])
+            if xi > 0.999:
+                hints.append(f"element {name!r} was at ξ = {xi:.6f} (h_min = {eout[0, k, 3]:.3g} m)" + ("; the film alone cannot carry the load there — give "
+                                                         "the bearing a contact law (mixed regime)"
+                                                         if isinstance(el, JournalBearing) and el.contact is None else ""))
+    return ("; " + "; ".join(hints)) if hints else ""
 
 
 @dataclass(frozen=True)
@@ -88,18 +114,18 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
     for idx in parts:
         tc = t_out[idx]
         if projects:
-            Y, MEM, nw, st, status, t_reached, h = runner(
+            Y, MEM, nw, st, status, t_reached, h, y_fin, mem_fin = runner(
                 P, y, mem, t, tc, config.rtol, config.atol, h, config.max_step,
                 config.max_steps - int(stats[1] + stats[2]), True)
         else:
-            Y, MEM, nw, st, status, t_reached, _ = runner(
+            Y, MEM, nw, st, status, t_reached, _, y_fin, mem_fin = runner(
                 P, y, mem, t, tc, config.rtol, config.atol, max_step=config.max_step)
         stats += st
         Ys.append(Y[:nw])
         MEMs.append(MEM[:nw])
         if status != OK or nw == 0:
             break
-        y, mem, t = Y[nw - 1].copy(), MEM[nw - 1].copy(), tc[-1]
+        y, mem, t = y_fin.copy(), mem_fin.copy(), tc[-1]
         if progress is not None:
             progress(t / config.t_end)
     wall = time.perf_counter() - t0
@@ -114,9 +140,10 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
                   wall_time=wall, config=asdict(config) | {"baumgarte": a}, status=int(status))
     if status != OK:
         raise SimulationError(f"simulation of {system.name!r} failed at t = {t_reached:.9g} s "
-                              f"with solver {config.solver!r}: {_MESSAGES.get(status, status)}; "
+                              f"with solver {config.solver!r}: {_message(system, status)}; "
                               f"{nw} of {len(t_out)} output samples were computed (kept in "
-                              f".results)", t_reached, res)
+                              f".results){_element_hint(system, P, t_reached, y_fin, mem_fin)}",
+                              t_reached, res)
     bad = ~np.isfinite(res.y).all(axis=1)
     if bad.any():
         raise SimulationError(f"non-finite state at t = {ts[bad][0]:.9g} s", ts[bad][0], res)

@@ -12,6 +12,8 @@ from __future__ import annotations
 
 from numba import njit
 
+from .journal import (CONTACT, IN_CONTACT, JOURNAL, ONSET_TOL, ONSET_VEL, V_MIN, ClearanceJoint,
+                      JournalBearing, journal_element, penetration)
 from .springs import SPRING_DAMPER, SpringDamper, spring_damper
 
 NOUT = 8
@@ -20,36 +22,75 @@ NMEM = 4
 NREAL = 24
 NINT = 8
 
-FORCE_ELEMENTS = {"spring_damper": SpringDamper}
+FORCE_ELEMENTS = {"spring_damper": SpringDamper, "clearance_joint": ClearanceJoint,
+                  "journal_bearing": JournalBearing}
+
+FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law
 
 
 @njit(cache=True)
 def eval_forces(t, q, qd, mem, fint, freal, tables, Q, out):
-    """Add all element forces to Q; fill ``out`` (nf, NOUT). Returns a status code (0 = ok)."""
-    status = 0
+    """Add all element forces to Q; fill ``out`` (nf, NOUT). Returns a status code (0 = ok;
+    probing inadmissible states is allowed and evaluated guarded, see ``journal_element``)."""
     for k in range(fint.shape[0]):
         typ = fint[k, 0]
         if typ == SPRING_DAMPER:
             spring_damper(q, qd, fint[k, 1], fint[k, 2], freal[k], Q, out[k])
-    return status
+        elif typ == JOURNAL:
+            journal_element(q, qd, mem[k], fint[k, 1], fint[k, 2], fint[k], freal[k], tables, Q, out[k])
+    return 0
 
 
 @njit(cache=True)
 def advance_memory(t, q, qd, mem, fint, freal, tables):
-    """Update element memory after an accepted step. Returns a status code (0 = ok)."""
+    """After an accepted step: record contact onsets (δ̇⁻) and separations [T16]; stop on
+    film breakdown. Returns 0 or FILM_BREAKDOWN + element index."""
+    for k in range(fint.shape[0]):
+        if fint[k, 0] != JOURNAL:
+            continue
+        delta, dd = penetration(q, qd, fint[k, 1], fint[k, 2], freal[k])
+        if fint[k, CONTACT] < 0:
+            if delta >= 0.0:  # ξ ≥ 1 with no contact law (c_c = c here)
+                return FILM_BREAKDOWN + k
+            continue
+        if mem[k, IN_CONTACT] < 0.5 and delta > 0.0:
+            mem[k, IN_CONTACT] = 1.0
+            mem[k, ONSET_VEL] = max(dd, freal[k, V_MIN])
+            mem[k, 2] += 1.0  # impact counter
+        elif mem[k, IN_CONTACT] > 0.5 and delta <= 0.0:
+            mem[k, IN_CONTACT] = 0.0
     return 0
 
 
 @njit(cache=True)
 def onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
-    """Fraction of a trial step after which a contact onset happens, or 1.0 if none."""
-    return 1.0
+    """If a trial step ends with an unresolved contact onset (penetration above the element's
+    onset tolerance while not in contact), the fraction of the step to retry with; else 1.0."""
+    frac = 1.0
+    for k in range(fint.shape[0]):
+        if fint[k, 0] != JOURNAL or fint[k, CONTACT] < 0 or mem[k, IN_CONTACT] > 0.5:
+            continue
+        d1, _ = penetration(q1, qd1, fint[k, 1], fint[k, 2], freal[k])
+        tol = freal[k, ONSET_TOL]
+        if d1 > tol:
+            d0, _ = penetration(q0, qd0, fint[k, 1], fint[k, 2], freal[k])
+            f = (0.5 * tol - d0) / (d1 - d0) if d1 > d0 else 0.5
+            frac = min(frac, max(0.01, min(0.95, f)))
+    return frac
 
 
 @njit(cache=True)
 def step_limit(q, qd, mem, fint, freal):
-    """Largest step that cannot skip a contact event [s] (inf if none)."""
-    return 1e300
+    """Largest step that cannot carry a free journal through its gap at the current approach
+    speed [s]: (gap + tol)/δ̇ for elements not in contact (inf if none)."""
+    h = 1e300
+    for k in range(fint.shape[0]):
+        if fint[k, 0] != JOURNAL or fint[k, CONTACT] < 0 or mem[k, IN_CONTACT] > 0.5:
+            continue
+        delta, dd = penetration(q, qd, fint[k, 1], fint[k, 2], freal[k])
+        if dd > 0.0 and delta < 0.0:
+            h = min(h, (-delta + freal[k, ONSET_TOL]) / dd)
+    return h
 
 
 def element_tables(elements, body_index, point_of):

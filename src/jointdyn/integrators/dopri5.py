@@ -28,7 +28,8 @@ E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22
 
 @njit(cache=True)
 def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
-    """Integrate from t0 to t_out[-1]; returns (Y, MEM, n_written, stats, status, t_reached, h_next).
+    """Integrate from t0 to t_out[-1]; returns (Y, MEM, n_written, stats, status, t_reached, h_next,
+    y_final, mem_final).
 
     stats = [rhs evaluations, accepted steps, rejected steps, Jacobians (0)]."""
     nn = y0.shape[0]
@@ -53,21 +54,21 @@ def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
     yt = np.empty(nn); y1 = np.empty(nn); err = np.empty(nn)
     st = accept_hooks(t, y, mem, P, do_project)
     if st != OK:
-        return Y, MEM, iout, stats, st, t, h
+        return Y, MEM, iout, stats, st, t, h, y, mem
     if rhs(t, y, mem, P, k1) != 0:
-        return Y, MEM, iout, stats, RHS_FAILED, t, h
+        return Y, MEM, iout, stats, RHS_FAILED, t, h, y, mem
     stats[0] += 1
     hmin = 1e-14 * max(1.0, abs(t_end))
     fail_status = OK
     while t < t_end:
         if stats[1] + stats[2] >= max_steps:
-            return Y, MEM, iout, stats, MAX_STEPS, t, h
+            return Y, MEM, iout, stats, MAX_STEPS, t, h, y, mem
         h = min(h, hmax, step_limit(y[:n], y[n:], mem, P[4], P[5]))
         h_prop = h
         if t + h >= t_end - 1e-14 * abs(t_end):
             h = t_end - t
         if h < hmin:
-            return Y, MEM, iout, stats, STEP_TOO_SMALL if fail_status == OK else fail_status, t, h
+            return Y, MEM, iout, stats, STEP_TOO_SMALL if fail_status == OK else fail_status, t, h, y, mem
         bad = 0
         for i in range(nn):
             yt[i] = y[i] + h * A21 * k1[i]
@@ -119,10 +120,10 @@ def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
         stats[1] += 1
         st = accept_hooks(t, y, mem, P, do_project)
         if st != OK:
-            return Y, MEM, iout, stats, st, t, h
+            return Y, MEM, iout, stats, st, t, h, y, mem
         if do_project and P[7] > 0:
             if rhs(t, y, mem, P, k1) != 0:
-                return Y, MEM, iout, stats, RHS_FAILED, t, h
+                return Y, MEM, iout, stats, RHS_FAILED, t, h, y, mem
             stats[0] += 1
         else:
             k1[:] = k7
@@ -130,4 +131,4 @@ def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
     if iout == nout:
         Y[nout - 1] = y
         MEM[nout - 1] = mem
-    return Y, MEM, iout, stats, OK, t, h_prop
+    return Y, MEM, iout, stats, OK, t, h_prop, y, mem

@@ -2,7 +2,9 @@
 
 No projection is possible inside ``solve_ivp``, so this path relies on Baumgarte
 stabilisation [T10] (rate ``baumgarte`` [1/s]) and tight tolerances; its drift is reported in
-the results like any other run. Element memory (contact onset) is updated at terminal events.
+the results like any other run. Contact onsets and separations of journal elements are located
+as terminal events (root of the penetration δ); the element memory is advanced at each event
+and the integration restarted, so δ̇⁻ is the rate at δ = 0 to the event tolerance.
 """
 
 from __future__ import annotations
@@ -11,16 +13,20 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..dynamics import rhs
-from ..forces.elements import NMEM, advance_memory
-from .common import MEMORY_FAILED, OK, RHS_FAILED
+from ..forces.elements import advance_memory
+from ..forces.journal import CONTACT, IN_CONTACT, JOURNAL, ONSET_VEL, V_MIN, penetration
+from .common import OK, RHS_FAILED
 
 
 def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.inf):
     """Integrate with ``solve_ivp``; same return tuple as the compiled integrators."""
-    n = y0.shape[0] // 2
+    nn = y0.shape[0]
+    n = nn // 2
+    fint, freal = P[4], P[5]
     mem = mem0.copy()
     stats = np.zeros(4, dtype=np.int64)
     status = [OK]
+    contact = [k for k in range(fint.shape[0]) if fint[k, 0] == JOURNAL and fint[k, CONTACT] >= 0]
 
     def f(t, y):
         out = np.empty_like(y)
@@ -28,19 +34,49 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
             status[0] = RHS_FAILED
         return out
 
-    sol = solve_ivp(f, (t0, t_out[-1]), y0, method=method, t_eval=t_out, rtol=rtol, atol=atol,
-                    max_step=max_step, dense_output=False)
-    Y = sol.y.T.copy()
-    MEM = np.repeat(mem[None], Y.shape[0], axis=0) if Y.shape[0] else np.zeros((0,) + mem.shape)
-    for i in range(Y.shape[0]):
-        if advance_memory(t_out[i], Y[i, :n], Y[i, n:], mem, P[4], P[5], P[6]) != 0:
-            status[0] = MEMORY_FAILED
-    stats[0] = sol.nfev
-    stats[1] = len(sol.t)
-    stats[3] = getattr(sol, "njev", 0)
-    st = status[0] if status[0] != OK else (OK if sol.success else RHS_FAILED)
-    t_reached = sol.t[-1] if len(sol.t) else t0
-    return Y, MEM, Y.shape[0], stats, st, t_reached, 0.0
+    def make_event(k):
+        def ev(t, y):
+            d, _ = penetration(y[:n], y[n:], fint[k, 1], fint[k, 2], freal[k])
+            return d if mem[k, IN_CONTACT] < 0.5 else -d  # onset: δ crosses 0 upwards; separation: downwards
+        ev.terminal = True
+        ev.direction = 1.0
+        return ev
 
-
-__all__ = ["scipy_ivp", "NMEM"]
+    events = [make_event(k) for k in contact]
+    Y = np.zeros((len(t_out), nn))
+    MEM = np.zeros((len(t_out),) + mem.shape)
+    iout = 0
+    while iout < len(t_out) and t_out[iout] <= t0:
+        Y[iout], MEM[iout] = y0, mem
+        iout += 1
+    t, y = t0, y0.copy()
+    while t < t_out[-1] and status[0] == OK:
+        te = t_out[iout:]
+        sol = solve_ivp(f, (t, t_out[-1]), y, method=method, t_eval=te, rtol=rtol, atol=atol,
+                        max_step=max_step, events=events or None)
+        stats[0] += sol.nfev
+        stats[1] += len(sol.t)
+        stats[3] += getattr(sol, "njev", 0)
+        for i in range(len(sol.t)):
+            Y[iout], MEM[iout] = sol.y[:, i], mem
+            iout += 1
+        if not sol.success:
+            status[0] = RHS_FAILED
+            break
+        if sol.status == 1:  # an event: advance memory at the event state, restart after it
+            k_ev = next(i for i, e in enumerate(sol.t_events) if len(e))
+            t, y = sol.t_events[k_ev][0], sol.y_events[k_ev][0].copy()
+            d, dd = penetration(y[:n], y[n:], fint[contact[k_ev], 1], fint[contact[k_ev], 2], freal[contact[k_ev]])
+            if mem[contact[k_ev], IN_CONTACT] < 0.5:
+                mem[contact[k_ev], IN_CONTACT] = 1.0
+                mem[contact[k_ev], ONSET_VEL] = max(dd, freal[contact[k_ev], V_MIN])
+                mem[contact[k_ev], 2] += 1.0
+            else:
+                mem[contact[k_ev], IN_CONTACT] = 0.0
+        else:
+            t = t_out[-1]
+    if status[0] == OK:
+        st = advance_memory(t, y[:n], y[n:], mem, fint, freal, P[6])
+        status[0] = st
+    t_reached = t_out[iout - 1] if iout else t0
+    return Y[:iout], MEM[:iout], iout, stats, status[0], t_reached, 0.0, y, mem

@@ -9,6 +9,8 @@ slider (body j = slider)**, so Ω = φ̇_slider + φ̇_rod − 2γ̇ = φ̇_rod 
 
 from __future__ import annotations
 
+from ..forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
+from ..forces.journal import ClearanceJoint, JournalBearing
 from ..joints.constraints import AngleDriver, Revolute, Translational
 from ..model import Model
 from ..units import rpm
@@ -21,13 +23,28 @@ ROD_MASS, ROD_INERTIA = 0.21, 2.5e-4
 SLIDER_MASS, SLIDER_INERTIA = 0.14, 1.0e-4
 SPEED = rpm(5000.0)  # [rad/s]
 
-JOINTS = ("perfect",)
+BEARING_RADIUS = 0.0105  # [m] (c = 0.5 mm)
+JOURNAL_RADIUS = 0.0100  # [m]
+BEARING_LENGTH = 0.040  # [m]
+VISCOSITY = 0.4  # [Pa·s]
+YOUNG, POISSON = 207e9, 0.3  # [Pa], [-]
+RESTITUTION = 0.9  # [-]
+
+JOINTS = ("perfect", "dry", "ott", "alshaer2005", "short", "finite")
 
 
-def slider_crank(joint: str = "perfect", speed: float = SPEED, gravity: float = 9.81) -> Model:
+def slider_crank(joint: str = "perfect", speed: float = SPEED, gravity: float = 9.81,
+                 clearance: float = BEARING_RADIUS - JOURNAL_RADIUS, viscosity: float = VISCOSITY,
+                 length: float = BEARING_LENGTH, restitution: float = RESTITUTION,
+                 friction=None, contact=None, asperity_height: float = 0.0) -> Model:
     """Build the benchmark slider-crank with the rod–slider joint of kind ``joint``.
 
-    speed: crank speed, counter-clockwise [rad/s]; gravity: along −y [m/s²].
+    joint: ``perfect`` (ideal revolute), ``dry`` (clearance joint, Lankarani–Nikravesh,
+    n = 1.5, K from the radii and steel), or a film model name (lubricated bearing);
+    speed: crank speed, CCW [rad/s]; gravity: along −y [m/s²]; clearance: c = R_B − R_J with
+    R_J = 10 mm [m]; viscosity [Pa·s]; length: bearing length [m]; restitution: c_r of the
+    dry contact [-]; friction: a friction law for the dry joint or None; contact: a contact law
+    for the mixed regime of a lubricated joint (None = pure film); asperity_height [m].
     The crank driving moment is the multiplier of the constraint named ``"drive"``.
     """
     if joint not in JOINTS:
@@ -45,5 +62,19 @@ def slider_crank(joint: str = "perfect", speed: float = SPEED, gravity: float = 
     m.add("drive", AngleDriver("ground", "crank", phi0=0.0, omega=speed))
     m.add("crank_pin", Revolute("crank", "A", "rod", "A"))
     m.add("guide", Translational("ground", "O", "slider", "B", axis=(1.0, 0.0), angle=0.0))
-    m.add("piston_pin", Revolute("rod", "B", "slider", "B"))
+    if joint == "perfect":
+        m.add("piston_pin", Revolute("rod", "B", "slider", "B"))
+        return m
+    if not clearance > 0:
+        raise ValueError(f"clearance = {clearance!r} [m]: must be > 0")
+    rb = JOURNAL_RADIUS + clearance
+    if joint == "dry":
+        K = journal_bearing_stiffness(rb, JOURNAL_RADIUS, YOUNG, POISSON, YOUNG, POISSON)
+        law = LankaraniNikravesh(stiffness=K, exponent=1.5, restitution=restitution)
+        m.add("piston_pin", ClearanceJoint("rod", "B", "slider", "B", rb, JOURNAL_RADIUS,
+                                           contact=law, friction=friction))
+    else:
+        m.add("piston_pin", JournalBearing("rod", "B", "slider", "B", rb, JOURNAL_RADIUS, length,
+                                           viscosity, film=joint, contact=contact, friction=friction,
+                                           asperity_height=asperity_height))
     return m
