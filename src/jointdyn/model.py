@@ -127,13 +127,14 @@ class Model:
         return 0.0 if body == GROUND else float(self.bodies[body].angle)
 
     # -- compile --------------------------------------------------------------------------
-    def compile(self, position_tol: float = 1e-12, max_iter: int = 50):
+    def compile(self, position_tol: float = 1e-12, max_iter: int = 50, centre_imperfect: bool = True):
         """Validate, assemble the initial state and return a frozen System.
 
         Position analysis: Gauss–Newton on Φ = 0 from the bodies' guesses (M-weighted minimal
         correction). Velocity analysis: the M-weighted projection of the guessed velocities on
-        Φ_q q̇ = −Φ_t [T11]. Imperfect joints (bearings, clearance joints) are assembled centred:
-        during the analysis they act as ideal revolute joints (e = 0, ė = 0).
+        Φ_q q̇ = −Φ_t [T11]. With ``centre_imperfect`` (default) imperfect joints (bearings,
+        clearance joints) are assembled centred: during the analysis they act as ideal revolute
+        joints (e = 0, ė = 0); otherwise the bodies' given positions and velocities set e and ė.
         """
         from .system import System
 
@@ -180,7 +181,8 @@ class Model:
 
         # assembly constraints: the ideal ones plus imperfect joints treated as revolute
         asm = [c for _, c in constraints] + [Revolute(e.body_i, e.point_i, e.body_j, e.point_j)
-                                             for _, e in elements if getattr(e, "centred", False)]
+                                             for _, e in elements
+                                             if centre_imperfect and getattr(e, "centred", False)]
         acint, acreal, am = constraint_table(asm, index, point_of, self._angle_of)
         if am > 3 * nb:
             raise ModelError(f"over-constrained: {am} constraint equations for {3 * nb} coordinates")
