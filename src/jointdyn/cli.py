@@ -22,6 +22,26 @@ def _progress(description: str):
                     TimeRemainingColumn(), console=console, transient=False)
 
 
+def _joint_kw(joint, clearance, viscosity, length, friction, contact, asperity_height) -> dict:
+    """Builder arguments of the shipped slider-crank from CLI options (SI)."""
+    from .forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
+    from .forces.friction_laws import Ambrosio
+    from .models import slider_crank as sc
+
+    if joint == "perfect":
+        return {}
+    kw = {"clearance": clearance}
+    if friction > 0:
+        kw["friction"] = Ambrosio(coefficient=friction)
+    if joint != "dry":
+        kw.update(viscosity=viscosity, length=length, asperity_height=asperity_height)
+        if contact:
+            rb = sc.JOURNAL_RADIUS + clearance
+            K = journal_bearing_stiffness(rb, sc.JOURNAL_RADIUS, sc.YOUNG, sc.POISSON, sc.YOUNG, sc.POISSON)
+            kw["contact"] = LankaraniNikravesh(stiffness=K, exponent=1.5, restitution=sc.RESTITUTION)
+    return kw
+
+
 @app.command()
 def run(
     model: str = typer.Argument(..., help="shipped model name: slider-crank"),
@@ -31,6 +51,12 @@ def run(
     solver: str = typer.Option(None, help="integrator (default per joint kind); see `jointdyn list`"),
     rtol: float = typer.Option(1e-8, help="relative tolerance [-]"),
     atol: float = typer.Option(1e-10, help="absolute tolerance [SI]"),
+    clearance: float = typer.Option(0.5e-3, help="radial clearance c of an imperfect joint [m]"),
+    viscosity: float = typer.Option(0.4, help="lubricant dynamic viscosity [Pa·s]"),
+    length: float = typer.Option(0.04, help="bearing length [m]"),
+    friction: float = typer.Option(0.0, help="Ambrósio friction coefficient of contact (0 = frictionless) [-]"),
+    contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact (mixed regime)"),
+    asperity_height: float = typer.Option(0.0, help="mixed regime: contact starts at h_min < this [m]"),
 ):
     """Simulate a shipped mechanism and write results.nc, timeseries.csv, summary.json, PNGs."""
     from .errors import SimulationError
@@ -43,9 +69,10 @@ def run(
             task = prog.add_task(f"slider-crank ({joint})", total=1.0)
             res, cols, summary = run_slider_crank(
                 joint, revs, out=out, progress=lambda f: prog.update(task, completed=f),
+                model_kw=_joint_kw(joint, clearance, viscosity, length, friction, contact, asperity_height),
                 solver=solver, rtol=rtol, atol=atol)
     except (ValueError, SimulationError) as err:
-        console.print(f"[red]error:[/red] {err}")
+        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
         raise typer.Exit(2)
     tab = Table(title=f"slider-crank, {joint} piston pin ({revs:g} rev)")
     tab.add_column("quantity")
@@ -76,7 +103,7 @@ def reproduce(
             runs = reproduce_alshaer2005(out, quick=quick, beyond=beyond,
                                          progress=lambda name, f: prog.update(tasks[name], completed=f))
     except (ValueError, SimulationError) as err:
-        console.print(f"[red]error:[/red] {err}")
+        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
         raise typer.Exit(2)
     console.print(summary_markdown(runs))
     console.print(f"wrote {out}/report.html, summary.csv, <case>.csv and the figures")
@@ -98,9 +125,11 @@ def film_force_cmd(
 
     import numpy as np
 
-    from .forces.film_models import film_forces
+    from .forces.film_models import FILM_MODELS, film_forces
 
     try:
+        if model not in FILM_MODELS:
+            raise ValueError(f"--model {model!r} is unknown; valid: {sorted(FILM_MODELS)}")
         with open(states, newline="") as f:
             rows = list(csv.DictReader(f))
         if not rows:
@@ -120,10 +149,10 @@ def film_force_cmd(
         for c, v in data.items():
             bad = np.flatnonzero(~np.isfinite(v))
             if bad.size:
-                raise ValueError(f"{states}: row {bad[0] + 1}, column {c!r}: non-finite value {v[bad[0]]!r}")
+                raise ValueError(f"{states}: row {bad[0] + 1}, column {c!r}: non-finite value {float(v[bad[0]])!r}")
         F = film_forces(model, *(data[c] for c in FILM_COLUMNS))
     except (ValueError, OSError) as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}")
+        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
         raise typer.Exit(2)
     fh = open(out, "w", newline="") if out else sys.stdout
     w = csv.writer(fh)

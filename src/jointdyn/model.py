@@ -198,9 +198,19 @@ class Model:
 
     def to_dict(self) -> dict:
         """Plain-data description (for provenance and model files)."""
+        from .forces.contact_laws import CONTACT_LAWS
+        from .forces.friction_laws import FRICTION_LAWS
+
+        laws = {v: k for k, v in {**CONTACT_LAWS, **FRICTION_LAWS}.items()}
+
+        def value(v):
+            if type(v) in laws:  # a law instance: {"law": name, **its fields}
+                return {"law": laws[type(v)], **{f.name: getattr(v, f.name) for f in fields(v)}}
+            return list(v) if isinstance(v, tuple) else v
+
         def item(x):
-            d = {f.name: getattr(x, f.name) for f in fields(x)}
-            d["type"] = next(k for k, v in {**CONSTRAINTS, **fe.FORCE_ELEMENTS}.items() if v is type(x))
+            d = {"type": next(k for k, v in {**CONSTRAINTS, **fe.FORCE_ELEMENTS}.items() if v is type(x))}
+            d.update({f.name: value(getattr(x, f.name)) for f in fields(x)})
             return d
 
         return {

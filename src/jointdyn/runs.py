@@ -43,6 +43,7 @@ def slider_crank_table(res, joint_element: str | None = None) -> dict[str, np.nd
         cols["ey_over_c"] = res.element(joint_element, "ey") / c
         cols["h_min"] = res.element(joint_element, "h_min")
         cols["joint_force"] = np.hypot(res.element(joint_element, "Fx"), res.element(joint_element, "Fy"))
+        cols["contact_force"] = res.element(joint_element, "contact_force")
     return cols
 
 
@@ -61,6 +62,11 @@ def summarize(res, cols: dict, revs: float) -> dict:
         xi = np.hypot(cols["ex_over_c"], cols["ey_over_c"])
         out["max_xi"] = float(xi.max())
         out["min_h_min"] = float(cols["h_min"].min())
+        in_contact = cols["contact_force"] > 0
+        dt = np.diff(res.t)
+        out["contact_time_s"] = float(np.sum(dt * 0.5 * (in_contact[1:] + in_contact[:-1])))
+        out["contact_fraction"] = out["contact_time_s"] / float(res.t[-1] - res.t[0])
+        out["max_contact_force"] = float(cols["contact_force"].max())
     return out
 
 
