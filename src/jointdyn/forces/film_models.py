@@ -1,10 +1,19 @@
 """Long-bearing film models (compiled scalar kernels) and their registry.
 
 All kernels share one signature ``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, table) -> (Fr, Ft)``:
-eccentricity ratio ξ [-] in [0, 1), ξ̇ [1/s], the product ξΩ [rad/s] with
-Ω = ω_J + ω_B − 2γ̇ (spec §2.1), viscosity μ [Pa·s], journal radius R [m], length L [m],
-radial clearance c [m], and a 3-D float table used only by tabulated models. F_r is the film
-force on the journal along u = e/|e|, F_t along t = ẑ × u [N] (spec §1).
+
+* xi        eccentricity ratio ξ = |e|/c, 0 ≤ ξ < 1 [-]
+* xi_dot    ξ̇ = dξ/dt [1/s]
+* xi_Omega  the product ξΩ, Ω = ω_J + ω_B − 2γ̇ (global rates, spec §2.1); the product keeps
+            ξ = 0 regular (spec §6, Cartesian form B = ξΩ/(2+ξ²)) [rad/s]
+* mu        dynamic viscosity μ [Pa·s]
+* R         journal radius [m]
+* L         bearing length [m]
+* c         radial clearance [m]
+* table     float64 3-D array used only by tabulated models (ignored here) [-]
+
+F_r is the film force on the journal along u = e/|e| (bearing centre → journal centre), F_t along
+t = ẑ × u [N] (spec §1). Theory: docs/theory.md [T20–T39].
 """
 
 from __future__ import annotations
@@ -21,31 +30,43 @@ ALSHAER2005 = 1
 
 
 @njit(cache=True)
-def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
-    """Paper's π-film long bearing, branch-free form [T21] (spec §3.3):
+def _atan_y_over_y_minus_1(y):
+    """atan(y)/y − 1 for y ≥ 0 without cancellation at small y [T23]."""
+    if y < 0.1:
+        # Σ_{n=1..9} (−1)^n y^{2n}/(2n+1); the first omitted term is < 1e-19 of the sum at y = 0.1
+        z = y * y
+        s = -1.0 / 19.0
+        for n in range(8, 0, -1):
+            s = (-1.0) ** n / (2.0 * n + 1.0) + z * s
+        return z * s
+    return math.atan(y) / y - 1.0
 
-    A = ξ̇, B = ξΩ/(2+ξ²), ρ = √(A²+B²), Δδ = 2 atan2(ρ√(1−ξ²), −ξA),
-    F_t = 6k B Δδ/√(1−ξ²), F_r = −6k[A Δδ/(1−ξ²)^{3/2} + 2ξρ/(1−ξ²)], k = μLR³/c².
-    For A < 0 the equivalent F_r = 12k(ρ/ξ)[1 + (atan(y)/y − 1)/(1−ξ²)], y = ρ√(1−ξ²)/(ξ|A|),
-    avoids cancellation near the wall [T22]. F = 0 at A = B = 0 (continuous limit)."""
-    k = mu * L * R * R * R / (c * c)
+
+@njit(cache=True)
+def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+    """The paper's π-film long bearing (alshaer2005), branch-free compact form [T21] (spec §3.3).
+
+    k = μLR³/c², A = ξ̇, B = ξΩ/(2+ξ²), ρ = √(A²+B²), w = 1−ξ² = (1−ξ)(1+ξ),
+    Δδ = δ₂ − δ₁ = 2·atan2(ρ√w, −ξA) ∈ (0, 2π), film start θ₁ = atan2(A, B)  [T22]
+    F_t = 6k·B·Δδ/√w,  F_r = −6k·[A·Δδ/w^{3/2} + 2ξρ/w]                   [T21]
+    For A < 0 and y = ρ√w/(ξ|A|) < 1 (near the wall, ξ > 1/√2) the identical form
+    F_r = 12k(ρ/ξ)·[1 + (atan(y)/y − 1)/w] avoids cancelling two O(1/w) terms; it is not used
+    for y ≥ 1, where it would lose digits as ξ → 0 (error ~ ε_mach/ξ)               [T23]
+    F = 0 at A = B = 0, its continuous limit (F is homogeneous of degree 1 in (A, B))  [T24]
+    """
     A = xi_dot
     B = xi_Omega / (2.0 + xi * xi)
-    rho = math.sqrt(A * A + B * B)
+    rho = math.hypot(A, B)
     if rho == 0.0:
         return 0.0, 0.0
+    k = mu * L * R * R * R / (c * c)
     w = (1.0 - xi) * (1.0 + xi)
     sw = math.sqrt(w)
     dd = 2.0 * math.atan2(rho * sw, -xi * A)
     ft = 6.0 * k * B * dd / sw
-    if A < 0.0 and xi > 0.0:
-        y = rho * sw / (xi * (-A))
-        if y < 0.1:
-            y2 = y * y
-            g = -y2 / 3.0 + y2 * y2 / 5.0 - y2 * y2 * y2 / 7.0 + y2 * y2 * y2 * y2 / 9.0
-        else:
-            g = math.atan(y) / y - 1.0
-        fr = 12.0 * k * (rho / xi) * (1.0 + g / w)
+    if A < 0.0 and rho * sw < xi * -A:
+        y = rho * sw / (xi * -A)
+        fr = 12.0 * k * (rho / xi) * (1.0 + _atan_y_over_y_minus_1(y) / w)
     else:
         fr = -6.0 * k * (A * dd / (w * sw) + 2.0 * xi * rho / w)
     return fr, ft
@@ -53,25 +74,25 @@ def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 @njit(cache=True)
 def ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
-    """Ott's long-bearing model, corrected (1−ξ²) denominators, ω-free form [T23] (spec §4.1):
+    """Ott's long-bearing model (paper eqs 1–5) with (1−ξ²) denominators, ω-free form [T25]
+    (spec §4.1):
 
-    G = √((1−ξ²)(ξ²Ω² + 4ξ̇²))/ξ = κ|ωE|, Φ = (κ+3)/(κ+3/2) (ξ̇>0), κ/(κ+3/2) (ξ̇<0), 1 (ξ̇=0),
-    F_t = 6πk ξΩ Φ/[(2+ξ²)√(1−ξ²)], F_r = −3k[4ξ²G + 2π(2+ξ²)ξ̇Φ]/[(2+ξ²)(1−ξ²)^{3/2}]."""
+    k = μLR³/c², w = 1−ξ², G = √(w(Ω² + 4ξ̇²/ξ²)), so ξ²G = ξ√(w((ξΩ)² + 4ξ̇²))   [T25]
+    κ = G/(2|ξ̇|), Φ = (κ+3)/(κ+3/2) for ξ̇ > 0, κ/(κ+3/2) for ξ̇ < 0, 1 at ξ̇ = 0; written
+    branch-free as Φ = 1 + 3ξξ̇/(√w·hypot(ξΩ, 2ξ̇) + 3ξ|ξ̇|)                       [T26]
+    F_t = 6πk·ξΩ·Φ/[(2+ξ²)√w],  F_r = −3k[4ξ²G + 2π(2+ξ²)ξ̇Φ]/[(2+ξ²)w^{3/2}]        [T25]
+    F = 0 at ξ̇ = ξΩ = 0.
+    """
+    h = math.hypot(xi_Omega, 2.0 * xi_dot)
+    if h == 0.0:
+        return 0.0, 0.0
     k = mu * L * R * R * R / (c * c)
     w = (1.0 - xi) * (1.0 + xi)
     sw = math.sqrt(w)
     s = 2.0 + xi * xi
-    # ξ²G = ξ √((1−ξ²)(ξ²Ω² + 4ξ̇²)) stays finite at ξ = 0
-    x2g = xi * math.sqrt(w * (xi_Omega * xi_Omega + 4.0 * xi_dot * xi_dot))
-    if xi_dot == 0.0:
-        phi = 1.0
-    else:
-        # κ = G/(2|ξ̇|) = √((1−ξ²)((ξΩ)²/(4ξ̇²) + 1))/ξ
-        if xi == 0.0:
-            phi = 1.0
-        else:
-            kap = sw * math.sqrt(xi_Omega * xi_Omega / (4.0 * xi_dot * xi_dot) + 1.0) / xi
-            phi = (kap + 3.0) / (kap + 1.5) if xi_dot > 0.0 else kap / (kap + 1.5)
+    x2g = xi * sw * h  # ξ²G, finite at ξ = 0
+    den = sw * h + 3.0 * xi * abs(xi_dot)  # > 0 because h > 0 and w > 0
+    phi = 1.0 + 3.0 * xi * xi_dot / den
     ft = 6.0 * math.pi * k * xi_Omega * phi / (s * sw)
     fr = -3.0 * k * (4.0 * x2g + 2.0 * math.pi * s * xi_dot * phi) / (s * w * sw)
     return fr, ft
@@ -79,25 +100,30 @@ def ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 @njit(cache=True)
 def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, table):
-    """Dispatch to the film kernel ``code`` (see ``FILM_MODELS``)."""
-    if code == ALSHAER2005:
-        return pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
-    elif code == OTT:
+    """Film force (F_r, F_t) [N] of the model ``code`` (OTT, ALSHAER2005; see ``FILM_MODELS``);
+    (nan, nan) for an unknown code. Arguments as in the module docstring."""
+    if code == OTT:
         return ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
-    return math.nan, math.nan
+    elif code == ALSHAER2005:
+        return pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+    else:  # codes 2 (short) and 3 (finite) are added by their kernels' authors
+        return math.nan, math.nan
 
 
 @dataclass(frozen=True)
 class Ott:
-    """Ott's long-bearing solution (paper eqs 1–5, corrected; spec §4) [T23]."""
+    """Ott's long-bearing solution (paper eqs 1–5, (2−ξ²) typo corrected to (1−ξ²); spec §4).
+    An approximation of the π-film (exact for steady load and ξ → 0; off by 5–25 % at moderate ξ
+    and diverging for ξ̇ < 0 near the wall) [T25]."""
 
     code: ClassVar[int] = OTT
-    tag: ClassVar[str] = "T23"
+    tag: ClassVar[str] = "T25"
 
 
 @dataclass(frozen=True)
 class Alshaer2005:
-    """The paper's π-film long-bearing solution (eqs 6–9, corrected; spec §3.3) [T21]."""
+    """The paper's π-film long-bearing solution (eqs 6–9 with typos T1–T7 corrected; spec §3.3):
+    exact for the long-bearing Reynolds equation on a half film starting at θ₁ [T21]."""
 
     code: ClassVar[int] = ALSHAER2005
     tag: ClassVar[str] = "T21"
@@ -107,40 +133,60 @@ FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005}
 
 _UNITS = {"xi": "-", "xi_dot": "1/s", "gamma": "rad", "gamma_dot": "rad/s", "omega_journal": "rad/s",
           "omega_bearing": "rad/s", "viscosity": "Pa·s", "length": "m", "radius": "m", "clearance": "m"}
+_NO_TABLE = np.zeros((1, 1, 1))
 
 
 def film_forces(model, xi, xi_dot, gamma, gamma_dot, omega_journal, omega_bearing, viscosity,
                 length, radius, clearance):
-    """Vectorised film force on the journal for arrays of states (SI, global rates).
+    """Film force on the journal for arrays of states (numpy broadcasting, SI, global rates).
 
-    Returns ``dict(Fr, Ft, Fx, Fy)`` [N] with Ω = ω_J + ω_B − 2γ̇, F_x = F_r cosγ − F_t sinγ,
-    F_y = F_r sinγ + F_t cosγ (spec §1)."""
-    if model not in FILM_MODELS:
-        raise ValueError(f"film model {model!r} is unknown; valid: {sorted(FILM_MODELS)}")
+    model          name in ``FILM_MODELS`` ("ott", "alshaer2005")
+    xi             eccentricity ratio, 0 ≤ ξ < 1 [-]
+    xi_dot         dξ/dt [1/s]
+    gamma          line-of-centres angle γ = atan2(e_y, e_x) [rad]
+    gamma_dot      dγ/dt in the global frame [rad/s]
+    omega_journal  absolute angular velocity of the journal ω_J [rad/s]
+    omega_bearing  absolute angular velocity of the bearing ω_B [rad/s]
+    viscosity      dynamic viscosity μ > 0 [Pa·s]
+    length         bearing length L > 0 [m]
+    radius         journal radius R > 0 [m]
+    clearance      radial clearance c > 0 [m]
+
+    Returns ``dict(Fr, Ft, Fx, Fy)`` [N] with Ω = ω_J + ω_B − 2γ̇ [T20],
+    F_x = F_r cosγ − F_t sinγ, F_y = F_r sinγ + F_t cosγ [T27]. Raises ``ValueError`` naming the
+    parameter, its unit, the allowed range and the flat index of the first bad row.
+    """
+    if not isinstance(model, str) or model not in FILM_MODELS:
+        raise ValueError(f"film model {model!r} is unknown; valid names: {', '.join(FILM_MODELS)}")
     args = dict(xi=xi, xi_dot=xi_dot, gamma=gamma, gamma_dot=gamma_dot, omega_journal=omega_journal,
                 omega_bearing=omega_bearing, viscosity=viscosity, length=length, radius=radius,
                 clearance=clearance)
-    arr = dict(zip(args, np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in args.values()])))
+    try:
+        arr = dict(zip(args, np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in args.values()])))
+    except ValueError as err:
+        raise ValueError(f"film_forces: inputs do not broadcast to one shape ({err})") from None
     for name, v in arr.items():
-        bad = np.flatnonzero(~np.isfinite(v.ravel()))
+        bad = np.flatnonzero(~np.isfinite(v))
         if bad.size:
-            raise ValueError(f"{name} [{_UNITS[name]}] is not finite at index {bad[0]}")
+            raise ValueError(f"{name} [{_UNITS[name]}] must be finite; got {v.flat[bad[0]]!r} "
+                             f"at index {bad[0]}")
     for name in ("viscosity", "length", "radius", "clearance"):
-        bad = np.flatnonzero(arr[name].ravel() <= 0)
+        bad = np.flatnonzero(arr[name] <= 0.0)
         if bad.size:
-            raise ValueError(f"{name} = {arr[name].ravel()[bad[0]]!r} [{_UNITS[name]}] at index {bad[0]}: must be > 0")
-    bad = np.flatnonzero((arr["xi"].ravel() < 0) | (arr["xi"].ravel() >= 1))
+            raise ValueError(f"{name} [{_UNITS[name]}] must be > 0; got {arr[name].flat[bad[0]]!r} "
+                             f"at index {bad[0]}")
+    x = arr["xi"]
+    bad = np.flatnonzero((x < 0.0) | (x >= 1.0))
     if bad.size:
-        raise ValueError(f"xi = {arr['xi'].ravel()[bad[0]]!r} [-] at index {bad[0]}: must be in [0, 1)")
+        raise ValueError(f"xi [-] must be in [0, 1); got {x.flat[bad[0]]!r} at index {bad[0]}")
     code = FILM_MODELS[model].code
-    shape = arr["xi"].shape
-    fr = np.empty(shape)
-    ft = np.empty(shape)
-    table = np.zeros((1, 1, 1))
-    xi_om = arr["xi"] * (arr["omega_journal"] + arr["omega_bearing"] - 2.0 * arr["gamma_dot"])
-    for idx in np.ndindex(shape):
-        fr[idx], ft[idx] = film_force(code, arr["xi"][idx], arr["xi_dot"][idx], xi_om[idx],
-                                      arr["viscosity"][idx], arr["radius"][idx], arr["length"][idx],
-                                      arr["clearance"][idx], table)
+    xi_om = x * (arr["omega_journal"] + arr["omega_bearing"] - 2.0 * arr["gamma_dot"])  # [T20]
+    fr = np.empty(x.shape)
+    ft = np.empty(x.shape)
+    for i in range(x.size):
+        fr.flat[i], ft.flat[i] = film_force(code, x.flat[i], arr["xi_dot"].flat[i], xi_om.flat[i],
+                                            arr["viscosity"].flat[i], arr["radius"].flat[i],
+                                            arr["length"].flat[i], arr["clearance"].flat[i], _NO_TABLE)
     g = arr["gamma"]
-    return {"Fr": fr, "Ft": ft, "Fx": fr * np.cos(g) - ft * np.sin(g), "Fy": fr * np.sin(g) + ft * np.cos(g)}
+    return {"Fr": fr, "Ft": ft,
+            "Fx": fr * np.cos(g) - ft * np.sin(g), "Fy": fr * np.sin(g) + ft * np.cos(g)}  # [T27]
