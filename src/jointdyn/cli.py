@@ -109,6 +109,58 @@ def reproduce(
     console.print(f"wrote {out}/report.html, summary.csv, <case>.csv and the figures")
 
 
+@app.command()
+def sweep(
+    spec: Path = typer.Argument(..., help="sweep file (TOML): [base], [grid]/[zip]/[sample], [output], [dask]"),
+    out: Path = typer.Option(Path("out/sweep"), help="output directory"),
+    resume: bool = typer.Option(False, help="keep finished cases, run only the missing ones"),
+    scheduler: str = typer.Option(None, help="Dask scheduler address tcp://HOST:PORT (default: local processes)"),
+    workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
+):
+    """Run a parameter study; writes DIR/cases/*.json per case and DIR/sweep.nc."""
+    from .sweep import load_sweep, run_sweep
+
+    try:
+        sp = load_sweep(spec)
+        n = len(sp.cases())
+        with _progress("sweep") as prog:
+            task = prog.add_task(f"{n} cases", total=n)
+            ds = run_sweep(sp, out, resume=resume, scheduler=scheduler, workers=workers,
+                           progress=lambda done, total: prog.update(task, completed=done))
+    except ValueError as err:
+        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
+        raise typer.Exit(2)
+    failed = int((ds["error"] != "").sum())
+    console.print(f"wrote {out}/sweep.nc ({n} cases, {failed} failed)")
+
+
+@app.command("plot-sweep")
+def plot_sweep(
+    directory: Path = typer.Argument(..., help="a sweep output directory"),
+    metric: str = typer.Option("peak_moment", help="metric to draw"),
+    out: Path = typer.Option(None, help="PNG file (default DIR/<metric>.png)"),
+):
+    """Heat map (two grid parameters) or line plot (one) of a sweep metric."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from . import plots
+    from .results import load
+
+    ds = load(directory / "sweep.nc")
+    if metric not in ds:
+        console.print(f"[red]error:[/red] metric {metric!r} not in the sweep; have {sorted(ds.data_vars)}", soft_wrap=True)
+        raise typer.Exit(2)
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    plots.sweep_metric(ds[metric], ax=ax)
+    fig.tight_layout()
+    target = out or directory / f"{metric}.png"
+    fig.savefig(target, dpi=120)
+    console.print(f"wrote {target}")
+
+
 FILM_COLUMNS = ("xi", "xi_dot", "gamma", "gamma_dot", "omega_journal", "omega_bearing", "viscosity",
                 "length", "radius", "clearance")
 
