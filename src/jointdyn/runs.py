@@ -17,7 +17,7 @@ from .models import slider_crank as sc
 from .simulate import SimConfig, simulate
 
 #: default integrator per joint kind (explicit where non-stiff, Rosenbrock for film/contact)
-DEFAULT_SOLVER = {"perfect": "dopri5"}
+DEFAULT_SOLVER = {"perfect": "dopri5", "dry": "dopri5"}
 
 
 def slider_crank_config(joint: str, revs: float = 4.0, samples_per_rev: int = 720,
@@ -67,6 +67,9 @@ def summarize(res, cols: dict, revs: float) -> dict:
         out["contact_time_s"] = float(np.sum(dt * 0.5 * (in_contact[1:] + in_contact[:-1])))
         out["contact_fraction"] = out["contact_time_s"] / float(res.t[-1] - res.t[0])
         out["max_contact_force"] = float(cols["contact_force"].max())
+        k = res.system.element_names.index("piston_pin")
+        out["max_penetration"] = float(res.mem[-1, k, 3])  # over accepted steps, not samples
+        out["impacts"] = int(res.mem[-1, k, 2])
     return out
 
 

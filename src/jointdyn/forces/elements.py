@@ -25,6 +25,7 @@ NINT = 8
 FORCE_ELEMENTS = {"spring_damper": SpringDamper, "clearance_joint": ClearanceJoint,
                   "journal_bearing": JournalBearing}
 
+MAX_PEN = 3  # mem column: largest penetration at an accepted step [m] (0 if none)
 FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law
 
 
@@ -53,10 +54,11 @@ def advance_memory(t, q, qd, mem, fint, freal, tables):
             if delta >= 0.0:  # ξ ≥ 1 with no contact law (c_c = c here)
                 return FILM_BREAKDOWN + k
             continue
+        mem[k, MAX_PEN] = max(mem[k, MAX_PEN], delta)
         if mem[k, IN_CONTACT] < 0.5 and delta > 0.0:
             mem[k, IN_CONTACT] = 1.0
             mem[k, ONSET_VEL] = max(dd, freal[k, V_MIN])
-            mem[k, 2] += 1.0  # impact counter
+            mem[k, 2] += 1.0  # impact counter (mem column 2)
         elif mem[k, IN_CONTACT] > 0.5 and delta <= 0.0:
             mem[k, IN_CONTACT] = 0.0
     return 0
