@@ -73,3 +73,21 @@ def test_bad_cli_input(tmp_path):
     assert r.exit_code == 2 and "clearance" in r.output and "[m]" in r.output
     r = runner.invoke(app, ["list"])
     assert r.exit_code == 0 and "journal_bearing" in r.output and "rodas4" in r.output
+
+
+def test_plot_and_animate_a_saved_run(tmp_path):
+    out = tmp_path / "lub"
+    r = runner.invoke(app, ["run", "slider-crank", "--joint", "dry", "--revs", "0.25", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    for what in ("moment", "orbit", "film", "contact", "energy"):
+        r = runner.invoke(app, ["plot", str(out), "--what", what])
+        assert r.exit_code == 0, r.output
+        assert (out / f"{what}.png").stat().st_size > 5000
+    r = runner.invoke(app, ["plot", str(out), "--what", "stress"])
+    assert r.exit_code == 2 and "valid" in r.output
+    gif = tmp_path / "a.gif"
+    r = runner.invoke(app, ["animate", str(out), "--out", str(gif), "--frames", "8"])
+    assert r.exit_code == 0, r.output
+    from PIL import Image
+
+    assert Image.open(gif).n_frames == 8

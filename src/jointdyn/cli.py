@@ -161,6 +161,54 @@ def plot_sweep(
     console.print(f"wrote {target}")
 
 
+@app.command("animate")
+def animate_cmd(
+    directory: Path = typer.Argument(..., help="a run directory with results.nc"),
+    out: Path = typer.Option(Path("anim.gif"), help="anim.gif (pillow) or anim.mp4 (needs ffmpeg)"),
+    frames: int = typer.Option(120, help="number of frames"),
+):
+    """Animate a saved run: the mechanism moving, journal orbits (e/c) in insets."""
+    from .animate import animate
+
+    f = directory / "results.nc" if directory.is_dir() else directory
+    if not f.exists():
+        console.print(f"[red]error:[/red] {escape(str(f))} does not exist", soft_wrap=True)
+        raise typer.Exit(2)
+    console.print(f"wrote {animate(f, out, frames=frames)}")
+
+
+@app.command("plot")
+def plot_cmd(
+    directory: Path = typer.Argument(..., help="a run directory with results.nc"),
+    what: str = typer.Option("moment", help="moment | orbit | film | contact | energy"),
+    out: Path = typer.Option(None, help="PNG (default DIR/<what>.png)"),
+):
+    """Plot a saved run: driving moment, journal orbit, film thickness, contact force, energy."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from . import plots
+    from .results import load
+
+    ds = load(directory / "results.nc")
+    choices = ("moment", "orbit", "film", "contact", "energy")
+    if what not in choices:
+        console.print(f"[red]error:[/red] --what {what!r}: valid: {list(choices)}", soft_wrap=True)
+        raise typer.Exit(2)
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    try:
+        plots.saved_run(ds, what, ax=ax)
+    except ValueError as err:
+        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
+        raise typer.Exit(2)
+    fig.tight_layout()
+    target = out or directory / f"{what}.png"
+    fig.savefig(target, dpi=120)
+    console.print(f"wrote {target}")
+
+
 FILM_COLUMNS = ("xi", "xi_dot", "gamma", "gamma_dot", "omega_journal", "omega_bearing", "viscosity",
                 "length", "radius", "clearance")
 

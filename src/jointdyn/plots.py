@@ -80,3 +80,49 @@ def sweep_metric(da, ax=None):
         ax.set_ylabel(_label(da.name))
         ax.grid(True, alpha=0.3)
     return ax
+
+
+def saved_run(ds, what: str, ax=None):
+    """Draw ``what`` (moment | orbit | film | contact | energy) from a saved results Dataset."""
+    import json
+
+    ax = _axes(ax)
+    rows = [str(r) for r in ds["row"].values]
+    model = json.loads(ds.attrs["model"])
+    t = ds["time"].values
+    journals = [k for k, v in model["items"].items() if v["type"] in ("journal_bearing", "clearance_joint")]
+    if what == "moment":
+        drivers = [r for r in rows if any(r.startswith(f"{n}[") for n, v in model["items"].items()
+                                          if v["type"] == "angle_driver")]
+        if not drivers:
+            raise ValueError("the run has no angle driver: no driving moment to plot")
+        for r in drivers:
+            ax.plot(t, ds["lam"].sel(row=r).values, label=r)
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("driving moment [N·m]")
+    elif what in ("orbit", "film", "contact"):
+        if not journals:
+            raise ValueError("the run has no journal element (bearing or clearance joint)")
+        for name in journals:
+            e = ds["element_outputs"].sel(element=name)
+            c = model["items"][name]["bearing_radius"] - model["items"][name]["journal_radius"]
+            if what == "orbit":
+                journal_orbit(e.sel(output="ex").values / c, e.sel(output="ey").values / c, ax=ax, label=name)
+            elif what == "film":
+                ax.plot(t, e.sel(output="h_min").values * 1e6, label=name)
+                ax.set_xlabel("t [s]")
+                ax.set_ylabel("minimum film thickness / gap h_min [µm]")
+            else:
+                ax.plot(t, e.sel(output="contact_force").values, label=name)
+                ax.set_xlabel("t [s]")
+                ax.set_ylabel("contact normal force [N]")
+    elif what == "energy":
+        p = ds["element_outputs"].sel(output="power").values  # (t, element)
+        for k, name in enumerate(ds["element"].values):
+            w = np.concatenate([[0.0], np.cumsum(0.5 * (p[1:, k] + p[:-1, k]) * np.diff(t))])
+            ax.plot(t, -w, label=f"{name}: energy dissipated")
+        ax.set_xlabel("t [s]")
+        ax.set_ylabel("energy [J]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return ax
