@@ -19,7 +19,8 @@ from .common import OK, RHS_FAILED
 
 
 def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.inf):
-    """Integrate with ``solve_ivp``; same return tuple as the compiled integrators."""
+    """Integrate with ``solve_ivp``; same return tuple as the compiled integrators (accepted and
+    rejected step counts are not reported by ``solve_ivp`` and stay 0)."""
     nn = y0.shape[0]
     n = nn // 2
     fint, freal = P[4], P[5]
@@ -37,7 +38,9 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
     def make_event(k):
         def ev(t, y):
             d, _ = penetration(y[:n], y[n:], fint[k, 1], fint[k, 2], freal[k])
-            return d if mem[k, IN_CONTACT] < 0.5 else -d  # onset: δ crosses 0 upwards; separation: downwards
+            # onset: δ rises through +1e-12 m; separation: δ falls through −1e-12 m (the offsets keep
+            # a restart exactly at the root from re-triggering the same event)
+            return d - 1e-12 if mem[k, IN_CONTACT] < 0.5 else -d - 1e-12
         ev.terminal = True
         ev.direction = 1.0
         return ev
@@ -50,12 +53,15 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
         Y[iout], MEM[iout] = y0, mem
         iout += 1
     t, y = t0, y0.copy()
+    first = None
     while t < t_out[-1] and status[0] == OK:
         te = t_out[iout:]
+        # after an event restart with a small first step: scipy's initial-step heuristic would
+        # otherwise jump deep into the stiff contact and an explicit method can blow up
         sol = solve_ivp(f, (t, t_out[-1]), y, method=method, t_eval=te, rtol=rtol, atol=atol,
-                        max_step=max_step, events=events or None)
+                        max_step=max_step, events=events or None, first_step=first)
+        first = 1e-9 * max(1.0, abs(t_out[-1]))
         stats[0] += sol.nfev
-        stats[1] += len(sol.t)
         stats[3] += getattr(sol, "njev", 0)
         for i in range(len(sol.t)):
             Y[iout], MEM[iout] = sol.y[:, i], mem
