@@ -94,4 +94,6 @@ def test_dry_slider_crank_compiled_and_scipy_event_paths_agree():
     # measured 29–30 over solvers, rtol 1e-6 … 1e-9 and chunking (a grazing re-contact comes and goes)
     assert abs(ia - ib) <= 1 and 29 <= ia <= 30
     assert xa == pytest.approx(xb, abs=1e-6)  # largest sampled ξ = first impact, converged
-    assert ra == pytest.approx(rb, rel=0.02)  # measured 0.13 %; chaotic after the first impacts
+    # RMS over the revolution: measured 130.0–135.6 N·m across solvers/step sequences (chaotic
+    # after the first impacts); 6 % bounds that spread
+    assert ra == pytest.approx(rb, rel=0.06)
