@@ -146,3 +146,20 @@ def test_film_breakdown_without_contact_law_stops_with_clear_error():
     part = err.value.results
     assert part is not None and 0 < len(part.t) < 121  # what was computed is kept
     assert np.all(part.eout[:, 0, 2] < 1.0)
+
+
+@pytest.mark.parametrize("kw,pattern", [
+    (dict(journal_radius=0.0105), r"journal_radius = 0.0105 \[m\]: must be in \(0, bearing_radius"),
+    (dict(journal_radius=0.011), r"journal_radius.*\[m\]"),
+    (dict(viscosity=0.0), r"viscosity = 0.0 \[Pa·s\]: must be > 0"),
+    (dict(length=-0.01), r"length = -0.01 \[m\]: must be > 0"),
+    (dict(film="sommerfeld"), r"film = 'sommerfeld'.*valid: .*'alshaer2005'.*'ott'"),
+    (dict(viscosity=float("nan")), r"viscosity = nan"),
+])
+def test_bad_bearing_parameters_are_named(kw, pattern):
+    from jointdyn.errors import ModelError
+
+    args = dict(bearing_radius=RB, journal_radius=RJ, length=L, viscosity=MU, film="alshaer2005") | kw
+    m = two_body_model(JournalBearing("a", "hole", "b", "pin", **args))
+    with pytest.raises(ModelError, match=pattern):
+        m.compile()
