@@ -106,7 +106,7 @@ def cold_and_rss(case, solver, rtol):
 
 def cli_times():
     """Cold (empty JIT cache) and warm end-to-end `jointdyn run slider-crank` (perfect) [s]."""
-    exe = [sys.executable, "-m", "jointdyn.cli", "run", "slider-crank", "--joint", "perfect", "--revs", "4"]
+    exe = [sys.executable, "-m", "jointdyn", "run", "slider-crank", "--joint", "perfect", "--revs", "4"]
     res = {}
     with tempfile.TemporaryDirectory() as d:
         for label, env in (("cold", dict(os.environ, NUMBA_CACHE_DIR=d)), ("warm", dict(os.environ, NUMBA_CACHE_DIR=d))):

@@ -91,3 +91,17 @@ def test_plot_and_animate_a_saved_run(tmp_path):
     from PIL import Image
 
     assert Image.open(gif).n_frames == 8
+
+
+def test_saved_file_reads_back_as_the_in_memory_dataset(tmp_path):
+    from jointdyn.results import load
+    from jointdyn.runs import run_slider_crank
+
+    res, _, _ = run_slider_crank("dry", 0.1)
+    res.save(tmp_path / "r.nc")
+    a, b = load(tmp_path / "r.nc"), res.to_dataset()
+    for v in b.data_vars:
+        np.testing.assert_array_equal(a[v].values, b[v].values)
+    for c in b.coords:
+        assert list(a[c].values) == list(b[c].values)
+    assert a.attrs["model"] == b.attrs["model"] and a.attrs["config"] == b.attrs["config"]

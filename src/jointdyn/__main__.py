@@ -1,0 +1,5 @@
+"""``python -m jointdyn`` = the ``jointdyn`` command."""
+
+from .cli import app
+
+app()
