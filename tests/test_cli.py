@@ -105,3 +105,16 @@ def test_saved_file_reads_back_as_the_in_memory_dataset(tmp_path):
     for c in b.coords:
         assert list(a[c].values) == list(b[c].values)
     assert a.attrs["model"] == b.attrs["model"] and a.attrs["config"] == b.attrs["config"]
+
+
+def test_run_model_file_with_overrides(tmp_path):
+    from pathlib import Path
+
+    ex = Path(__file__).resolve().parents[1] / "examples" / "slider_crank_perfect.toml"
+    out = tmp_path / "mf"
+    r = runner.invoke(app, ["run", str(ex), "--out", str(out), "--set", "simulation.t_end=0.003",
+                            "--set", "simulation.n_out=31"])
+    assert r.exit_code == 0, r.output
+    assert (out / "results.nc").exists() and xr.load_dataset(out / "results.nc").sizes["time"] == 31
+    r = runner.invoke(app, ["run", str(ex), "--out", str(out), "--set", "bodies.crank.mass=-1"])
+    assert r.exit_code == 2 and "bodies.crank.mass" in r.output and "kg" in r.output

@@ -44,7 +44,7 @@ def _joint_kw(joint, clearance, viscosity, length, friction, contact, asperity_h
 
 @app.command()
 def run(
-    model: str = typer.Argument(..., help="shipped model name: slider-crank"),
+    model: str = typer.Argument(..., help="shipped model name (slider-crank) or a model file FILE.toml"),
     joint: str = typer.Option("perfect", help="piston-pin joint kind"),
     revs: float = typer.Option(4.0, help="crank revolutions to simulate [-]"),
     out: Path = typer.Option(Path("out/run"), help="output directory"),
@@ -57,11 +57,25 @@ def run(
     friction: float = typer.Option(0.0, help="Ambrósio friction coefficient of contact (0 = frictionless) [-]"),
     contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact (mixed regime)"),
     asperity_height: float = typer.Option(0.0, help="mixed regime: contact starts at h_min < this [m]"),
+    set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
 ):
-    """Simulate a shipped mechanism and write results.nc, timeseries.csv, summary.json, PNGs."""
-    from .errors import SimulationError
+    """Simulate a shipped mechanism or a model file; write results.nc, timeseries.csv and more."""
+    from .errors import ModelError, SimulationError
     from .runs import run_slider_crank
 
+    if model.endswith(".toml"):
+        from .config import run_model_file
+
+        try:
+            res = run_model_file(model, out, overrides=set_)
+        except (ModelError, ValueError, SimulationError) as err:
+            console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
+            raise typer.Exit(2)
+        console.print(f"{res.system.name}: {len(res.t)} samples, {res.stats['rhs_evaluations']} RHS evaluations, "
+                      f"{res.wall_time:.3f} s; wrote {out}/results.nc, timeseries.csv, model.toml")
+        return
+    if set_:
+        raise typer.BadParameter("--set applies to model files only", param_hint="--set")
     if model != "slider-crank":
         raise typer.BadParameter(f"unknown model {model!r}; valid: ['slider-crank']", param_hint="MODEL")
     try:

@@ -89,6 +89,8 @@ class ClearanceJoint:
                lambda v: 0 < v < self.bearing_radius)
         _check(o, "onset_tolerance", self.onset_tolerance, "m", "> 0", lambda v: v > 0)
         _check(o, "min_impact_velocity", self.min_impact_velocity, "m/s", "> 0", lambda v: v > 0)
+        if isinstance(self, ClearanceJoint) and self.contact is None:
+            raise ValueError(f"{o}.contact: a dry clearance joint needs a contact law; valid: {sorted(CONTACT_LAWS)}")
         if self.contact is not None and type(self.contact) not in CONTACT_LAWS.values():
             raise ValueError(f"{o}.contact = {self.contact!r}: not a contact law; valid: {sorted(CONTACT_LAWS)}")
         if self.friction is not None and type(self.friction) not in FRICTION_LAWS.values():
