@@ -15,6 +15,7 @@ from numba import njit
 from .journal import (CONTACT, IN_CONTACT, JOURNAL, ONSET_TOL, ONSET_VEL, V_MIN, ClearanceJoint,
                       JournalBearing, journal_element, penetration)
 from .springs import SPRING_DAMPER, SpringDamper, spring_damper
+from .tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
 
 NOUT = 8
 OUT_COLUMNS = ("ex", "ey", "xi", "h_min", "Fx", "Fy", "power", "contact_force")
@@ -23,7 +24,7 @@ NREAL = 24
 NINT = 8
 
 FORCE_ELEMENTS = {"spring_damper": SpringDamper, "clearance_joint": ClearanceJoint,
-                  "journal_bearing": JournalBearing}
+                  "journal_bearing": JournalBearing, "tabulated_force": TabulatedForce}
 
 MAX_PEN = 3  # mem column: largest penetration at an accepted step [m] (0 if none)
 FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law
@@ -39,6 +40,8 @@ def eval_forces(t, q, qd, mem, fint, freal, tables, Q, out):
             spring_damper(q, qd, fint[k, 1], fint[k, 2], freal[k], Q, out[k])
         elif typ == JOURNAL:
             journal_element(q, qd, mem[k], fint[k, 1], fint[k, 2], fint[k], freal[k], tables, Q, out[k])
+        elif typ == TABULATED_FORCE:
+            tabulated_force(t, q, qd, fint[k, 2], fint[k], freal[k], tables[fint[k, 3]], Q, out[k])
     return 0
 
 
@@ -102,15 +105,27 @@ def element_tables(elements, body_index, point_of):
     fint = np.zeros((len(elements), NINT), dtype=np.int64)
     freal = np.zeros((len(elements), NREAL))
     mem0 = np.zeros((len(elements), NMEM))
-    tables = np.zeros((1, 1, 1))
+    tabs = [np.zeros((1, 2))]  # table 0: unused placeholder; tables are (rows, 2) slices
     for k, e in enumerate(elements):
         fint[k, 0] = e.code
         fint[k, 1] = body_index(e.body_i)
         fint[k, 2] = body_index(e.body_j)
+        freal[k, 2:4] = point_of(e.body_j, e.point_j)
+        if isinstance(e, TabulatedForce):
+            tabs.append(np.column_stack([e.x, e.y]).astype(float))
+            d = np.asarray(e.direction, float)
+            fint[k, 3] = len(tabs) - 1
+            fint[k, 4] = -2 if e.argument == "time" else body_index(e.argument)
+            fint[k, 5] = len(e.x)
+            freal[k, 4:7] = (*(d / np.hypot(*d)), e.period)
+            continue
         ints = e.int_params() if hasattr(e, "int_params") else ()
         fint[k, 3:3 + len(ints)] = ints
         freal[k, 0:2] = point_of(e.body_i, e.point_i)
-        freal[k, 2:4] = point_of(e.body_j, e.point_j)
         p = e.params()
         freal[k, 4:4 + len(p)] = p
+    rows = max(t.shape[0] for t in tabs)
+    tables = np.zeros((len(tabs), rows, 2))
+    for i, t in enumerate(tabs):
+        tables[i, :t.shape[0]] = t
     return fint, freal, tables, mem0
