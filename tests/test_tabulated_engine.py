@@ -61,3 +61,13 @@ def test_engine_example_energy_balance():
     # trapezoidal quadrature of the powers on 4001 samples: ~1e-5 of the work turned over
     assert np.abs(balance).max() < 1e-4 * scale
     assert trap(p_el)[-1] < 0  # the films dissipate
+
+
+MODEL_FILES = [p for p in sorted(EXAMPLES.glob("*.toml")) if "[base]" not in p.read_text(encoding="utf-8")]
+
+
+@pytest.mark.parametrize("path", MODEL_FILES, ids=lambda p: p.stem)
+def test_every_example_model_file_runs(path):
+    model, cfg = load_model(path, ["simulation.t_end=0.003", "simulation.n_out=31"])
+    res = simulate(model.compile(), cfg)
+    assert np.all(np.isfinite(res.y)) and res.drift[:, 0].max() < 1e-10
