@@ -15,7 +15,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -36,15 +35,27 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 CASES = {
     # case: (model kwargs, [(solver, rtol)], reference (solver, rtol))
-    "perfect": ({"joint": "perfect"}, [("dopri5", 1e-6), ("dopri5", 1e-8), ("rodas4", 1e-8),
-                                        ("scipy-dop853", 1e-8)], ("dopri5", 1e-12)),
-    "dry": ({"joint": "dry"}, [("dopri5", 1e-6), ("dopri5", 1e-7), ("rodas4", 1e-7),
-                               ("scipy-dop853", 1e-7)], ("dopri5", 1e-10)),
+    "perfect": (
+        {"joint": "perfect"},
+        [("dopri5", 1e-6), ("dopri5", 1e-8), ("rodas4", 1e-8), ("scipy-dop853", 1e-8)],
+        ("dopri5", 1e-12),
+    ),
+    "dry": (
+        {"joint": "dry"},
+        [("dopri5", 1e-6), ("dopri5", 1e-7), ("rodas4", 1e-7), ("scipy-dop853", 1e-7)],
+        ("dopri5", 1e-10),
+    ),
     "ott": ({"joint": "ott"}, [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)], ("rodas4", 1e-10)),
-    "alshaer2005": ({"joint": "alshaer2005"}, [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)],
-                    ("rodas4", 1e-10)),
-    "alshaer2005_c0.05mm": ({"joint": "alshaer2005", "clearance": 5e-5},
-                            [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)], ("rodas4", 1e-10)),
+    "alshaer2005": (
+        {"joint": "alshaer2005"},
+        [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)],
+        ("rodas4", 1e-10),
+    ),
+    "alshaer2005_c0.05mm": (
+        {"joint": "alshaer2005", "clearance": 5e-5},
+        [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)],
+        ("rodas4", 1e-10),
+    ),
 }
 
 
@@ -69,8 +80,11 @@ def rhs_cost(system, y, mem, n=200_000) -> float:
 
 def metrics(res, ref):
     M, Mr = post.driving_moment(res), post.driving_moment(ref)
-    out = {"peak_M": float(M.max()), "err_M/peak": float(np.abs(M - Mr).max() / np.abs(Mr).max()),
-           "d_rms_M": float(abs(np.sqrt(np.mean(M**2)) - np.sqrt(np.mean(Mr**2))))}
+    out = {
+        "peak_M": float(M.max()),
+        "err_M/peak": float(np.abs(M - Mr).max() / np.abs(Mr).max()),
+        "d_rms_M": float(abs(np.sqrt(np.mean(M**2)) - np.sqrt(np.mean(Mr**2)))),
+    }
     if res.eout.shape[1]:
         out["max_xi"] = float(res.eout[:, 0, 2].max())
         out["d_max_xi"] = float(abs(out["max_xi"] - ref.eout[:, 0, 2].max()))
@@ -80,8 +94,9 @@ def metrics(res, ref):
 def run_once(case, solver, rtol, system=None):
     kw = dict(CASES[case][0])
     system = system or slider_crank(**kw).compile()
-    return simulate(system, SimConfig(t_end=T_END, n_out=REVS * 360 + 1, solver=solver, rtol=rtol,
-                                      atol=rtol * 1e-4))
+    return simulate(
+        system, SimConfig(t_end=T_END, n_out=REVS * 360 + 1, solver=solver, rtol=rtol, atol=rtol * 1e-4)
+    )
 
 
 def _subprocess_time(code: str, cold: bool):
@@ -91,9 +106,18 @@ def _subprocess_time(code: str, cold: bool):
         if cold:
             env["NUMBA_CACHE_DIR"] = d
         t0 = time.perf_counter()
-        out = subprocess.run([sys.executable, "-c", code + "\nimport resource,sys;"
-                              "print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)"],
-                             check=True, env=env, cwd=ROOT, capture_output=True, text=True)
+        out = subprocess.run(
+            [
+                sys.executable,
+                "-c",
+                code + "\nimport resource,sys;print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)",
+            ],
+            check=True,
+            env=env,
+            cwd=ROOT,
+            capture_output=True,
+            text=True,
+        )
         return time.perf_counter() - t0, int(out.stdout.split()[-1]) / 1024
 
 
@@ -109,10 +133,14 @@ def cli_times():
     exe = [sys.executable, "-m", "jointdyn", "run", "slider-crank", "--joint", "perfect", "--revs", "4"]
     res = {}
     with tempfile.TemporaryDirectory() as d:
-        for label, env in (("cold", dict(os.environ, NUMBA_CACHE_DIR=d)), ("warm", dict(os.environ, NUMBA_CACHE_DIR=d))):
+        for label, env in (
+            ("cold", dict(os.environ, NUMBA_CACHE_DIR=d)),
+            ("warm", dict(os.environ, NUMBA_CACHE_DIR=d)),
+        ):
             t0 = time.perf_counter()
-            subprocess.run(exe + ["--out", os.path.join(d, "o")], check=True, env=env, cwd=ROOT,
-                           capture_output=True)
+            subprocess.run(
+                exe + ["--out", os.path.join(d, "o")], check=True, env=env, cwd=ROOT, capture_output=True
+            )
             res[label] = time.perf_counter() - t0
     return res
 
@@ -141,23 +169,55 @@ def main(argv=None):
             warm = statistics.median(times)
             floor = res.stats["rhs_evaluations"] * cost
             cold, rss = (math.nan, math.nan) if (a.no_cold or a.quick) else cold_and_rss(case, solver, rtol)
-            rows.append({"case": case, "solver": solver, "rtol": rtol, "warm_s": warm, "cold_s": cold,
-                         "rss_MB": rss, **res.stats, "floor_s": floor, "warm/floor": warm / floor,
-                         **metrics(res, ref)})
+            rows.append(
+                {
+                    "case": case,
+                    "solver": solver,
+                    "rtol": rtol,
+                    "warm_s": warm,
+                    "cold_s": cold,
+                    "rss_MB": rss,
+                    **res.stats,
+                    "floor_s": floor,
+                    "warm/floor": warm / floor,
+                    **metrics(res, ref),
+                }
+            )
             print(f"  done {case} {solver} rtol={rtol:g}: {warm:.4f} s", file=sys.stderr)
     if a.peers:
         rows += peer_rows(quick=a.quick)
-    cols = ["case", "solver", "rtol", "warm_s", "cold_s", "rss_MB", "rhs_evaluations", "accepted_steps",
-            "rejected_steps", "floor_s", "warm/floor", "peak_M", "err_M/peak", "d_rms_M", "max_xi", "d_max_xi"]
+    cols = [
+        "case",
+        "solver",
+        "rtol",
+        "warm_s",
+        "cold_s",
+        "rss_MB",
+        "rhs_evaluations",
+        "accepted_steps",
+        "rejected_steps",
+        "floor_s",
+        "warm/floor",
+        "peak_M",
+        "err_M/peak",
+        "d_rms_M",
+        "max_xi",
+        "d_max_xi",
+    ]
     print("| " + " | ".join(cols) + " |")
     print("|" + "---|" * len(cols))
     for r in rows:
-        print("| " + " | ".join(f"{r[c]:.4g}" if isinstance(r.get(c), float) else str(r.get(c, ""))
-                                for c in cols) + " |")
+        print(
+            "| "
+            + " | ".join(f"{r[c]:.4g}" if isinstance(r.get(c), float) else str(r.get(c, "")) for c in cols)
+            + " |"
+        )
     if not a.quick and not a.no_cold:
         t = cli_times()
-        print(f"\n`jointdyn run slider-crank --joint perfect --revs 4`: cold (empty JIT cache) "
-              f"{t['cold']:.1f} s, warm {t['warm']:.2f} s end-to-end")
+        print(
+            f"\n`jointdyn run slider-crank --joint perfect --revs 4`: cold (empty JIT cache) "
+            f"{t['cold']:.1f} s, warm {t['warm']:.2f} s end-to-end"
+        )
     return rows
 
 
@@ -170,7 +230,7 @@ def peer_rows(quick=False):
         return []
     rows = []
     n_out = REVS * 360 + 1
-    for h in ((1e-5,) if quick else (1e-5, 1e-6)):
+    for h in (1e-5,) if quick else (1e-5, 1e-6):
         for name, fn in (("perfect", pe.exudyn_perfect), ("dry", pe.exudyn_dry)):
             try:
                 r = fn(h, T_END, n_out)
@@ -178,8 +238,16 @@ def peer_rows(quick=False):
                 print(f"exudyn {name} h={h}: {err}", file=sys.stderr)
                 continue
             M = np.asarray(r["crank_moment"])
-            rows.append({"case": name, "solver": f"exudyn h={h:g}", "rtol": math.nan, "warm_s": r["wall_s"],
-                         "peak_M": float(M.max()), "accepted_steps": r.get("steps", "")})
+            rows.append(
+                {
+                    "case": name,
+                    "solver": f"exudyn h={h:g}",
+                    "rtol": math.nan,
+                    "warm_s": r["wall_s"],
+                    "peak_M": float(M.max()),
+                    "accepted_steps": r.get("steps", ""),
+                }
+            )
     return rows
 
 

@@ -63,7 +63,7 @@ import numpy as np
 
 # ----------------------------------------------------------------------------- mechanism data
 R_CRANK, L_ROD = 0.05, 0.12
-M = (0.30, 0.21, 0.14)          # crank, rod, slider [kg]
+M = (0.30, 0.21, 0.14)  # crank, rod, slider [kg]
 IZZ = (1.0e-4, 2.5e-4, 1.0e-4)  # [kg m^2]
 G = 9.81
 OMEGA = 5000 * 2 * math.pi / 60  # 523.5988 rad/s
@@ -102,8 +102,9 @@ def _build(h: float, t_end: float, joint: str, opts: dict | None = None):
     mGroundCoord = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nGround, coordinate=0))
 
     def body(pos, vel, m, izz):
-        n = mbs.AddNode(ii.NodeRigidBody2D(referenceCoordinates=[pos[0], pos[1], 0.0],
-                                           initialVelocities=list(vel)))
+        n = mbs.AddNode(
+            ii.NodeRigidBody2D(referenceCoordinates=[pos[0], pos[1], 0.0], initialVelocities=list(vel))
+        )
         b = mbs.AddObject(ii.ObjectRigidBody2D(nodeNumber=n, mass=m, inertia=izz))
         return n, b
 
@@ -114,7 +115,7 @@ def _build(h: float, t_end: float, joint: str, opts: dict | None = None):
     nR, bR = body((r + l / 2, 0.0), (0.0, vA + beta_d0 * l / 2, beta_d0), M[1], IZZ[1])
     nS, bS = body((r + l, 0.0), (0.0, vA + beta_d0 * l, 0.0), M[2], IZZ[2])  # = (0, 0, 0)
 
-    for b, m in zip((bC, bR, bS), M):
+    for b in (bC, bR, bS):
         mc = mbs.AddMarker(ii.MarkerBodyMass(bodyNumber=b))
         mbs.AddLoad(ii.LoadMassProportional(markerNumber=mc, loadVector=[0.0, -G, 0.0]))
 
@@ -132,25 +133,45 @@ def _build(h: float, t_end: float, joint: str, opts: dict | None = None):
     # ground-slider prismatic along global x, rotation locked
     mGR = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=oGround, localPosition=[0.0, 0.0, 0.0]))
     mSR = mbs.AddMarker(ii.MarkerBodyRigid(bodyNumber=bS, localPosition=[0.0, 0.0, 0.0]))
-    mbs.AddObject(ii.ObjectJointPrismatic2D(markerNumbers=[mGR, mSR], axisMarker0=[1.0, 0.0, 0.0],
-                                            normalMarker1=[0.0, 1.0, 0.0], constrainRotation=True))
+    mbs.AddObject(
+        ii.ObjectJointPrismatic2D(
+            markerNumbers=[mGR, mSR],
+            axisMarker0=[1.0, 0.0, 0.0],
+            normalMarker1=[0.0, 1.0, 0.0],
+            constrainRotation=True,
+        )
+    )
     # crank drive: phi_crank - omega t = 0
     mCphi = mbs.AddMarker(ii.MarkerNodeCoordinate(nodeNumber=nC, coordinate=2))
-    oDrive = mbs.AddObject(ii.CoordinateConstraint(
-        markerNumbers=[mGroundCoord, mCphi],
-        offsetUserFunction=lambda mbs_, t, item, off: w * t,
-        offsetUserFunction_t=lambda mbs_, t, item, off: w))
-    sDrive = mbs.AddSensor(ii.SensorObject(objectNumber=oDrive, storeInternal=True, writeToFile=False,
-                                           outputVariableType=exu.OutputVariableType.Force))
+    oDrive = mbs.AddObject(
+        ii.CoordinateConstraint(
+            markerNumbers=[mGroundCoord, mCphi],
+            offsetUserFunction=lambda mbs_, t, item, off: w * t,
+            offsetUserFunction_t=lambda mbs_, t, item, off: w,
+        )
+    )
+    sDrive = mbs.AddSensor(
+        ii.SensorObject(
+            objectNumber=oDrive,
+            storeInternal=True,
+            writeToFile=False,
+            outputVariableType=exu.OutputVariableType.Force,
+        )
+    )
 
     state = None
     if joint == "perfect":
         mbs.AddObject(ii.ObjectJointRevolute2D(markerNumbers=[mR1, mS]))
     elif joint == "dry":
         state = _DryState()
-        mbs.AddObject(ii.ObjectConnectorCartesianSpringDamper(
-            markerNumbers=[mR1, mS], stiffness=[0.0, 0.0, 0.0], damping=[0.0, 0.0, 0.0],
-            springForceUserFunction=state.force))
+        mbs.AddObject(
+            ii.ObjectConnectorCartesianSpringDamper(
+                markerNumbers=[mR1, mS],
+                stiffness=[0.0, 0.0, 0.0],
+                damping=[0.0, 0.0, 0.0],
+                springForceUserFunction=state.force,
+            )
+        )
         mbs.SetPreStepUserFunction(state.make_prestep(exu, nR, nS))
     else:
         raise ValueError(joint)
@@ -222,8 +243,11 @@ class _DryState:
             self.dd_minus = None
 
     def make_prestep(self, exu, nR, nS):
-        P, V, A = exu.OutputVariableType.Position, exu.OutputVariableType.Velocity, \
-            exu.OutputVariableType.Rotation
+        P, V, A = (
+            exu.OutputVariableType.Position,
+            exu.OutputVariableType.Velocity,
+            exu.OutputVariableType.Rotation,
+        )
         W = exu.OutputVariableType.AngularVelocity
         hl = L_ROD / 2
 
@@ -248,8 +272,9 @@ class _DryState:
         return prestep
 
 
-def _run(h: float, t_end: float, n_out: int, joint: str, opts: dict | None = None,
-         solver: str = "GeneralizedAlpha") -> dict:
+def _run(
+    h: float, t_end: float, n_out: int, joint: str, opts: dict | None = None, solver: str = "GeneralizedAlpha"
+) -> dict:
     exu, _ = _exudyn()
     t0 = time.perf_counter()
     SC, mbs, s, hd = _build(h, t_end, joint, opts)
@@ -268,26 +293,36 @@ def _run(h: float, t_end: float, n_out: int, joint: str, opts: dict | None = Non
     t_out = np.linspace(0.0, t_end, n_out)
     if joint == "perfect":
         from scipy.interpolate import CubicSpline
+
         # sensors may repeat the first time (initial value): keep strictly increasing times
         keep = np.concatenate([[True], np.diff(ts) > 0])
         moment = CubicSpline(ts[keep], moment_steps[keep])(t_out)
     else:
         moment = np.interp(t_out, ts, moment_steps)
-    return {"t": t_out, "crank_moment": moment, "wall_s": wall_s, "build_s": build_s,
-            "steps": hd["n_steps"], "max_penetration": None if st is None else st.max_pen,
-            "impacts": None if st is None else st.impacts,
-            "t_steps": ts, "crank_moment_steps": moment_steps}
+    return {
+        "t": t_out,
+        "crank_moment": moment,
+        "wall_s": wall_s,
+        "build_s": build_s,
+        "steps": hd["n_steps"],
+        "max_penetration": None if st is None else st.max_pen,
+        "impacts": None if st is None else st.impacts,
+        "t_steps": ts,
+        "crank_moment_steps": moment_steps,
+    }
 
 
-def exudyn_perfect(h: float, t_end: float = T_END, n_out: int = N_OUT, *,
-                   solver: str = "TrapezoidalIndex2") -> dict:
+def exudyn_perfect(
+    h: float, t_end: float = T_END, n_out: int = N_OUT, *, solver: str = "TrapezoidalIndex2"
+) -> dict:
     """Perfect joints at fixed step h (Exudyn implicit trapezoidal rule, index-2 constraints,
     by default). Crank driving moment at n_out equally spaced times on [0, t_end]."""
     return _run(h, t_end, n_out, "perfect", solver=solver)
 
 
-def exudyn_dry(h: float, t_end: float = T_END, n_out: int = N_OUT, *,
-               solver: str = "TrapezoidalIndex2") -> dict:
+def exudyn_dry(
+    h: float, t_end: float = T_END, n_out: int = N_OUT, *, solver: str = "TrapezoidalIndex2"
+) -> dict:
     """Dry clearance joint (Lankarani-Nikravesh) between rod and slider at fixed step h."""
     return _run(h, t_end, n_out, "dry", solver=solver)
 
@@ -307,26 +342,37 @@ def analytic_moment(t, omega: float = OMEGA):
     aBx = -r * omega**2 * c - l * cb * bd**2 - l * sb * bdd
     vB, aB = np.stack([vBx, 0 * t]), np.stack([aBx, 0 * t])
     v1, a1, v2, a2 = vA / 2, aA / 2, (vA + vB) / 2, (aA + aB) / 2
-    p = (M[0] * (v1 * a1).sum(0) + M[1] * (v2 * a2).sum(0) + IZZ[1] * bd * bdd
-         + M[2] * vB[0] * aB[0] + G * (M[0] * v1[1] + M[1] * v2[1]))
+    p = (
+        M[0] * (v1 * a1).sum(0)
+        + M[1] * (v2 * a2).sum(0)
+        + IZZ[1] * bd * bdd
+        + M[2] * vB[0] * aB[0]
+        + G * (M[0] * v1[1] + M[1] * v2[1])
+    )
     return p / omega
 
 
 def _table(argv=None):
     import argparse
+
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--revs", type=float, default=4.0, help="crank revolutions (default 4)")
     ap.add_argument("--perfect-h", default="1e-4,3e-5,1e-5,3e-6,2.5e-6,1e-6")
     ap.add_argument("--dry-h", default="1e-5,1e-6")
-    ap.add_argument("--solver", default="TrapezoidalIndex2",
-                    help="Exudyn DynamicSolverType: TrapezoidalIndex2 or GeneralizedAlpha")
+    ap.add_argument(
+        "--solver",
+        default="TrapezoidalIndex2",
+        help="Exudyn DynamicSolverType: TrapezoidalIndex2 or GeneralizedAlpha",
+    )
     ap.add_argument("--repeat", type=int, default=3, help="runs per case; median wall time")
     a = ap.parse_args(argv)
     exu, _ = _exudyn()
     t_end = a.revs * 2 * math.pi / OMEGA
     t_rev = 2 * math.pi / OMEGA
-    print(f"Exudyn {exu.__version__}, solver {a.solver}, fixed step, t_end = {t_end:.6f} s "
-          f"({a.revs:g} rev), {N_OUT} output points; wall = SolveDynamic only, median of {a.repeat}")
+    print(
+        f"Exudyn {exu.__version__}, solver {a.solver}, fixed step, t_end = {t_end:.6f} s "
+        f"({a.revs:g} rev), {N_OUT} output points; wall = SolveDynamic only, median of {a.repeat}"
+    )
 
     def timed(fn, h):
         runs = [fn(h, t_end, N_OUT, solver=a.solver) for _ in range(max(1, a.repeat))]
@@ -336,19 +382,25 @@ def _table(argv=None):
         return res
 
     print("\nperfect joints (error vs analytic inverse dynamics, relative to its peak)")
-    print(f"{'h [s]':>9} {'steps':>7} {'wall [s]':>9} {'build [s]':>9} {'peak':>9} {'min':>9} "
-          f"{'err/peak':>9}")
+    print(
+        f"{'h [s]':>9} {'steps':>7} {'wall [s]':>9} {'build [s]':>9} {'peak':>9} {'min':>9} {'err/peak':>9}"
+    )
     for h in [float(x) for x in a.perfect_h.split(",") if x]:
         r = timed(exudyn_perfect, h)
         Mref = analytic_moment(r["t"])
         err = np.abs(r["crank_moment"] - Mref).max() / np.abs(Mref).max()
-        print(f"{h:9.1e} {r['steps']:7d} {r['wall_s']:9.3f} {r['build_s']:9.3f} "
-              f"{r['crank_moment'].max():9.3f} {r['crank_moment'].min():9.3f} {err:9.2e}")
+        print(
+            f"{h:9.1e} {r['steps']:7d} {r['wall_s']:9.3f} {r['build_s']:9.3f} "
+            f"{r['crank_moment'].max():9.3f} {r['crank_moment'].min():9.3f} {err:9.2e}"
+        )
 
-    print("\ndry clearance rod-slider (Lankarani-Nikravesh, K = %.4g, c_r = %g, c = %g m)"
-          % (K_LN, C_R, C_CLEAR))
-    print(f"{'h [s]':>9} {'steps':>7} {'wall [s]':>9} {'impacts':>8} {'max pen [m]':>12} "
-          f"{'peak':>9} {'min':>9} {'RMS all':>9} {'RMS last':>9}")
+    print(
+        f"\ndry clearance rod-slider (Lankarani-Nikravesh, K = {K_LN:.4g}, c_r = {C_R:g}, c = {C_CLEAR:g} m)"
+    )
+    print(
+        f"{'h [s]':>9} {'steps':>7} {'wall [s]':>9} {'impacts':>8} {'max pen [m]':>12} "
+        f"{'peak':>9} {'min':>9} {'RMS all':>9} {'RMS last':>9}"
+    )
     for h in [float(x) for x in a.dry_h.split(",") if x]:
         try:
             r = timed(exudyn_dry, h)
@@ -358,11 +410,15 @@ def _table(argv=None):
         ts, Ms = r["t_steps"], r["crank_moment_steps"]
         last = ts >= t_end - t_rev * (1 - 1e-9)
         rms_last = float(np.sqrt(np.mean(Ms[last] ** 2)))  # per-step samples of the last rev
-        print(f"{h:9.1e} {r['steps']:7d} {r['wall_s']:9.3f} {r['impacts']:8d} "
-              f"{r['max_penetration']:12.3e} {Ms.max():9.1f} {Ms.min():9.1f} "
-              f"{np.sqrt(np.mean(Ms**2)):9.2f} {rms_last:9.2f}")
-    print("(dry: peak/min/RMS from the per-step multipliers, not the interpolated output; "
-          "impacts and max penetration from accepted step-end states)")
+        print(
+            f"{h:9.1e} {r['steps']:7d} {r['wall_s']:9.3f} {r['impacts']:8d} "
+            f"{r['max_penetration']:12.3e} {Ms.max():9.1f} {Ms.min():9.1f} "
+            f"{np.sqrt(np.mean(Ms**2)):9.2f} {rms_last:9.2f}"
+        )
+    print(
+        "(dry: peak/min/RMS from the per-step multipliers, not the interpolated output; "
+        "impacts and max penetration from accepted step-end states)"
+    )
 
 
 if __name__ == "__main__":

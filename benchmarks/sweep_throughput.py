@@ -29,8 +29,10 @@ def main(argv=None):
     ap.add_argument("--workers", type=int, default=os.cpu_count())
     a = ap.parse_args(argv)
     # viscosity × clearance Latin hypercube around the benchmark (all cases run without contact)
-    spec = SweepSpec(base=BASE, sample={"n": a.n, "seed": 1,
-                                        "ranges": {"viscosity": [0.2, 1.0], "clearance": [5e-5, 5e-4]}})
+    spec = SweepSpec(
+        base=BASE,
+        sample={"n": a.n, "seed": 1, "ranges": {"viscosity": [0.2, 1.0], "clearance": [5e-5, 5e-4]}},
+    )
     singles = []
     for _ in range(5):
         run_slider_crank("alshaer2005", 4, rtol=1e-6, atol=1e-10)  # warm
@@ -44,10 +46,15 @@ def main(argv=None):
         wall = time.perf_counter() - t0
     failed = int((ds["error"] != "").sum())
     per_case = wall * a.workers / a.n
-    print(f"| cases | workers | wall [s] | cases/min | single warm run [s] | per-case cost in sweep [s] | overhead/case [s] | failed |")
+    print(
+        "| cases | workers | wall [s] | cases/min | single warm run [s] | per-case cost in sweep [s] "
+        "| overhead/case [s] | failed |"
+    )
     print("|---|---|---|---|---|---|---|---|")
-    print(f"| {a.n} | {a.workers} | {wall:.1f} | {a.n / wall * 60:.0f} | {single:.3f} | {per_case:.3f} | "
-          f"{per_case - single:.3f} | {failed} |")
+    print(
+        f"| {a.n} | {a.workers} | {wall:.1f} | {a.n / wall * 60:.0f} | {single:.3f} | {per_case:.3f} | "
+        f"{per_case - single:.3f} | {failed} |"
+    )
     print(f"median simulate() wall time inside the sweep: {np.nanmedian(ds['wall_time_s'].values):.3f} s")
 
 

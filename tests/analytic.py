@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 
 
-def slider_crank_inverse_dynamics(t, omega, r=0.05, l=0.12, m=(0.30, 0.21, 0.14),
-                                  I=(1.0e-4, 2.5e-4, 1.0e-4), g=9.81):
+def slider_crank_inverse_dynamics(
+    t, omega, r=0.05, l=0.12, m=(0.30, 0.21, 0.14), I=(1.0e-4, 2.5e-4, 1.0e-4), g=9.81
+):
     """Crank driving moment [N·m] of the ideal slider-crank at constant crank speed, from the
     power balance T·ω = dT_kin/dt + dV/dt with hand-derived kinematics (no multipliers)."""
     th = omega * t
@@ -28,7 +29,12 @@ def slider_crank_inverse_dynamics(t, omega, r=0.05, l=0.12, m=(0.30, 0.21, 0.14)
     v1, a1 = Ad / 2, Add / 2
     v2, a2 = (Ad + Bd) / 2, (Add + Bdd) / 2
     v3, a3 = Bd, Bdd
-    power = (m[0] * (v1 * a1).sum(0) + m[1] * (v2 * a2).sum(0) + I[1] * bd * bdd
-             + m[2] * (v3 * a3).sum(0) + g * (m[0] * v1[1] + m[1] * v2[1] + m[2] * v3[1]))
+    power = (
+        m[0] * (v1 * a1).sum(0)
+        + m[1] * (v2 * a2).sum(0)
+        + I[1] * bd * bdd
+        + m[2] * (v3 * a3).sum(0)
+        + g * (m[0] * v1[1] + m[1] * v2[1] + m[2] * v3[1])
+    )
     _ = (A, B)
     return power / omega

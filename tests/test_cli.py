@@ -34,8 +34,23 @@ def test_run_perfect_writes_files(tmp_path):
 
 def test_run_lubricated_has_eccentricity_columns(tmp_path):
     out = tmp_path / "lub"
-    r = runner.invoke(app, ["run", "slider-crank", "--joint", "alshaer2005", "--revs", "0.25", "--out", str(out),
-                            "--rtol", "1e-7", "--atol", "1e-11"])
+    r = runner.invoke(
+        app,
+        [
+            "run",
+            "slider-crank",
+            "--joint",
+            "alshaer2005",
+            "--revs",
+            "0.25",
+            "--out",
+            str(out),
+            "--rtol",
+            "1e-7",
+            "--atol",
+            "1e-11",
+        ],
+    )
     assert r.exit_code == 0, r.output
     header = (out / "timeseries.csv").read_text().splitlines()[0].split(",")
     assert {"ex_over_c", "ey_over_c", "h_min"} <= set(header)
@@ -43,12 +58,16 @@ def test_run_lubricated_has_eccentricity_columns(tmp_path):
 
 def test_film_force_csv_matches_python(tmp_path):
     states = tmp_path / "s.csv"
-    states.write_text("xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
-                      "0.5,20,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n0.9,-5,0.3,50,523.6,0,0.4,0.04,0.01,5e-5\n")
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,20,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n0.9,-5,0.3,50,523.6,0,0.4,0.04,0.01,5e-5\n"
+    )
     r = runner.invoke(app, ["film-force", str(states), "--model", "alshaer2005"])
     assert r.exit_code == 0, r.output
     rows = list(csv.DictReader(r.output.splitlines()))
-    ref = film_forces("alshaer2005", [0.5, 0.9], [20, -5], 0.3, [100, 50], 523.6, 0, 0.4, 0.04, 0.01, [5e-4, 5e-5])
+    ref = film_forces(
+        "alshaer2005", [0.5, 0.9], [20, -5], 0.3, [100, 50], 523.6, 0, 0.4, 0.04, 0.01, [5e-4, 5e-5]
+    )
     # spec §8.2b case 7: F_r = −78.9922102, F_t = 109.959985 N
     assert float(rows[0]["Fr"]) == -78.9922102 or abs(float(rows[0]["Fr"]) + 78.9922102) < 1e-6
     for i in range(2):
@@ -58,8 +77,10 @@ def test_film_force_csv_matches_python(tmp_path):
 
 def test_film_force_bad_rows_name_row_and_column(tmp_path):
     states = tmp_path / "s.csv"
-    states.write_text("xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
-                      "0.5,20,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n0.5,nan,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n")
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,20,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n0.5,nan,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n"
+    )
     r = runner.invoke(app, ["film-force", str(states)])
     assert r.exit_code == 2 and "row 2" in r.output and "xi_dot" in r.output
     r = runner.invoke(app, ["film-force", str(states), "--model", "sommerfeld"])
@@ -69,7 +90,9 @@ def test_film_force_bad_rows_name_row_and_column(tmp_path):
 def test_bad_cli_input(tmp_path):
     r = runner.invoke(app, ["run", "slider-crank", "--joint", "magic", "--out", str(tmp_path / "x")])
     assert r.exit_code == 2 and "joint" in r.output and "valid" in r.output
-    r = runner.invoke(app, ["run", "slider-crank", "--joint", "dry", "--clearance", "-1e-4", "--out", str(tmp_path / "x")])
+    r = runner.invoke(
+        app, ["run", "slider-crank", "--joint", "dry", "--clearance", "-1e-4", "--out", str(tmp_path / "x")]
+    )
     assert r.exit_code == 2 and "clearance" in r.output and "[m]" in r.output
     r = runner.invoke(app, ["list"])
     assert r.exit_code == 0 and "journal_bearing" in r.output and "rodas4" in r.output
@@ -112,8 +135,19 @@ def test_run_model_file_with_overrides(tmp_path):
 
     ex = Path(__file__).resolve().parents[1] / "examples" / "slider_crank_perfect.toml"
     out = tmp_path / "mf"
-    r = runner.invoke(app, ["run", str(ex), "--out", str(out), "--set", "simulation.t_end=0.003",
-                            "--set", "simulation.n_out=31"])
+    r = runner.invoke(
+        app,
+        [
+            "run",
+            str(ex),
+            "--out",
+            str(out),
+            "--set",
+            "simulation.t_end=0.003",
+            "--set",
+            "simulation.n_out=31",
+        ],
+    )
     assert r.exit_code == 0, r.output
     assert (out / "results.nc").exists() and xr.load_dataset(out / "results.nc").sizes["time"] == 31
     r = runner.invoke(app, ["run", str(ex), "--out", str(out), "--set", "bodies.crank.mass=-1"])

@@ -69,9 +69,14 @@ def test_file_and_builder_give_the_same_crank_moment(joint, t_end):
     # The file's slider guess x = 0.17 is 1 ulp from the builder's r + l = 0.16999999999999998.
     # The dry case is chaotic (spec/benchmark.md): that ulp alone grows to 0.25 N·m by t = 4 ms
     # (measured), so the guess is set to the builder's float to compare the file path itself.
-    model, config = load_model(EXAMPLES / f"slider_crank_{joint}.toml",
-                               [f"simulation.t_end={t_end}", "simulation.n_out=101",
-                                "bodies.slider.position=[0.16999999999999998, 0.0]"])
+    model, config = load_model(
+        EXAMPLES / f"slider_crank_{joint}.toml",
+        [
+            f"simulation.t_end={t_end}",
+            "simulation.n_out=101",
+            "bodies.slider.position=[0.16999999999999998, 0.0]",
+        ],
+    )
     assert model.to_dict() == slider_crank(joint).to_dict()  # now exactly the builder's model
     sim = SimConfig(t_end=t_end, n_out=101, solver="dopri5", rtol=1e-8, atol=1e-10)
     assert config == sim
@@ -87,20 +92,42 @@ def test_file_and_builder_give_the_same_crank_moment(joint, t_end):
 # -- (b) save -> load round trip -----------------------------------------------------------------
 def rich_model() -> tuple[Model, SimConfig]:
     """Every constraint and element type, optional fields set and unset, odd names."""
-    m = Model("rich \"model\" — ünïcode", gravity=(0.1, -9.80665))
+    m = Model('rich "model" — ünïcode', gravity=(0.1, -9.80665))
     m.add_ground_point("O", (0.0, 0.0))
     m.add_ground_point("far point", (1.0, -0.25))
-    m.add_body("left arm", 1.5, 0.02, position=(0.5, 0.0), angle=0.1, velocity=(0.0, 0.5, 1.0),
-               points={"O": (-0.5, 0.0), "tip": (0.5, 1e-17)})
+    m.add_body(
+        "left arm",
+        1.5,
+        0.02,
+        position=(0.5, 0.0),
+        angle=0.1,
+        velocity=(0.0, 0.5, 1.0),
+        points={"O": (-0.5, 0.0), "tip": (0.5, 1e-17)},
+    )
     m.add_body("slider", 0.3, 1e-4, position=(1.0, -0.25), points={"P": (0.0, 0.0)})
     m.add("pivot", Revolute("ground", "O", "left arm", "O"))
     m.add("guide", Translational("ground", "far point", "slider", "P", axis=(1.0, 0.0)))  # angle None
     m.add("spring", SpringDamper("left arm", "tip", "slider", "P", 1e3, 2.5, 0.3))
-    m.add("bearing", JournalBearing("left arm", "tip", "slider", "P", 0.0105, 0.01, 0.04, 0.4,
-                                    film="ott", contact=HuntCrossley(1e9, 1.5, 0.8),
-                                    friction=Ambrosio(0.1, 1e-4, 2e-3), asperity_height=1e-6))
-    return m, SimConfig(t_end=0.01, n_out=7, solver="rodas4", rtol=1e-7, atol=1e-11, max_step=1e-4,
-                        baumgarte=5.0)
+    m.add(
+        "bearing",
+        JournalBearing(
+            "left arm",
+            "tip",
+            "slider",
+            "P",
+            0.0105,
+            0.01,
+            0.04,
+            0.4,
+            film="ott",
+            contact=HuntCrossley(1e9, 1.5, 0.8),
+            friction=Ambrosio(0.1, 1e-4, 2e-3),
+            asperity_height=1e-6,
+        ),
+    )
+    return m, SimConfig(
+        t_end=0.01, n_out=7, solver="rodas4", rtol=1e-7, atol=1e-11, max_step=1e-4, baumgarte=5.0
+    )
 
 
 ROUND_TRIP = {
@@ -128,8 +155,12 @@ def test_schemas_are_the_dataclass_fields():
     """Rule 5: the file keys are the registries' dataclass fields, nothing hand-written."""
     s = cfgmod.schemas()
     names = lambda cls: [f.name for f in dataclasses.fields(cls)]
-    for family, reg in (("joints", CONSTRAINTS), ("elements", FORCE_ELEMENTS),
-                        ("contact", CONTACT_LAWS), ("friction", FRICTION_LAWS)):
+    for family, reg in (
+        ("joints", CONSTRAINTS),
+        ("elements", FORCE_ELEMENTS),
+        ("contact", CONTACT_LAWS),
+        ("friction", FRICTION_LAWS),
+    ):
         assert set(s[family]) == set(reg)
         for name, cls in reg.items():
             assert list(s[family][name].keys) == names(cls)
@@ -141,11 +172,18 @@ def test_schemas_are_the_dataclass_fields():
 # -- (c) overrides -------------------------------------------------------------------------------
 def test_overrides_apply():
     path = EXAMPLES / "slider_crank_dry.toml"
-    model, config = load_model(path, ["bodies.crank.mass=0.35", "elements.piston_pin.contact.restitution=0.7",
-                                      "simulation.solver=rodas4", "model.gravity=[0.0, 0.0]",
-                                      "simulation.max_step = 1e-5",
-                                      'elements.piston_pin.friction={ law = "coulomb", coefficient = 0.05 }',
-                                      "bodies.rod.points.C=[0.0, 0.01]"])
+    model, config = load_model(
+        path,
+        [
+            "bodies.crank.mass=0.35",
+            "elements.piston_pin.contact.restitution=0.7",
+            "simulation.solver=rodas4",
+            "model.gravity=[0.0, 0.0]",
+            "simulation.max_step = 1e-5",
+            'elements.piston_pin.friction={ law = "coulomb", coefficient = 0.05 }',
+            "bodies.rod.points.C=[0.0, 0.01]",
+        ],
+    )
     assert model.bodies["crank"].mass == 0.35
     pin = model.items["piston_pin"]
     assert pin.contact.restitution == 0.7 and pin.contact.stiffness == 69494005044.38522
@@ -157,15 +195,18 @@ def test_overrides_apply():
     assert doc["bodies"]["crank"]["mass"] == 0.3
 
 
-@pytest.mark.parametrize("override, fragments", [
-    ("bodies.crank.mas=0.3", ["'mas'", "bodies.crank", "valid keys: mass, inertia"]),
-    ("bodies.crnk.mass=0.3", ["'crnk'", "valid keys: crank, rod, slider"]),
-    ("simulatio.t_end=1", ["'simulatio'", "valid keys: model, ground, bodies"]),
-    ("elements.piston_pin.contact.stifness=1e9", ["'stifness'", "valid keys: law, stiffness"]),
-    ("elements.piston_pin.bearing_radius.x=1", ["bearing_radius is a value, not a table"]),
-    ("bodies.crank.mass", ["expected dotted.key=value"]),
-    ("bodies.crank.mass=0.3x", ["is not a TOML value"]),
-])
+@pytest.mark.parametrize(
+    "override, fragments",
+    [
+        ("bodies.crank.mas=0.3", ["'mas'", "bodies.crank", "valid keys: mass, inertia"]),
+        ("bodies.crnk.mass=0.3", ["'crnk'", "valid keys: crank, rod, slider"]),
+        ("simulatio.t_end=1", ["'simulatio'", "valid keys: model, ground, bodies"]),
+        ("elements.piston_pin.contact.stifness=1e9", ["'stifness'", "valid keys: law, stiffness"]),
+        ("elements.piston_pin.bearing_radius.x=1", ["bearing_radius is a value, not a table"]),
+        ("bodies.crank.mass", ["expected dotted.key=value"]),
+        ("bodies.crank.mass=0.3x", ["is not a TOML value"]),
+    ],
+)
 def test_bad_override_paths_are_clear(override, fragments):
     with pytest.raises(ModelError) as err:
         load_model(EXAMPLES / "slider_crank_dry.toml", [override])
@@ -176,7 +217,9 @@ def test_bad_override_paths_are_clear(override, fragments):
 
 
 def test_bad_override_value_names_the_override():
-    with pytest.raises(ModelError, match=r"--set bodies.crank.mass=-1\).*bodies.crank.mass.*\[kg\] must be > 0"):
+    with pytest.raises(
+        ModelError, match=r"--set bodies.crank.mass=-1\).*bodies.crank.mass.*\[kg\] must be > 0"
+    ):
         load_model(EXAMPLES / "slider_crank_perfect.toml", ["bodies.crank.mass=-1"])
 
 
@@ -319,8 +362,11 @@ def test_example_model_files_load_and_assemble(path):
 
 
 def test_run_model_file_writes_results_and_timeseries(tmp_path):
-    res = run_model_file(EXAMPLES / "four_bar_lubricated.toml", tmp_path / "out",
-                         ["simulation.t_end=0.002", "simulation.n_out=21"])
+    res = run_model_file(
+        EXAMPLES / "four_bar_lubricated.toml",
+        tmp_path / "out",
+        ["simulation.t_end=0.002", "simulation.n_out=21"],
+    )
     out = tmp_path / "out"
     assert (out / "results.nc").stat().st_size > 0
     with open(out / "timeseries.csv", newline="") as f:
@@ -329,6 +375,8 @@ def test_run_model_file_writes_results_and_timeseries(tmp_path):
     assert header[0] == "time [s]" and "rocker.phi [rad]" in header and "lambda.drive[0] [N·m]" in header
     assert data.shape == (21, 1 + 2 * res.system.n + res.lam.shape[1])
     np.testing.assert_array_equal(data[:, 0], res.t)
-    np.testing.assert_array_equal(data[:, header.index("lambda.drive[0] [N·m]")], res.multipliers("drive")[:, 0])
+    np.testing.assert_array_equal(
+        data[:, header.index("lambda.drive[0] [N·m]")], res.multipliers("drive")[:, 0]
+    )
     _, config = load_model(out / "model.toml")  # the resolved model, overrides applied
     assert config.t_end == 0.002

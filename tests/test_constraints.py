@@ -3,8 +3,14 @@
 import numpy as np
 import pytest
 
-from jointdyn.joints.constraints import (CONSTRAINTS, AngleDriver, Revolute, Translational,
-                                         constraint_table, eval_constraints)
+from jointdyn.joints.constraints import (
+    CONSTRAINTS,
+    AngleDriver,
+    Revolute,
+    Translational,
+    constraint_table,
+    eval_constraints,
+)
 
 POINTS = {("a", "p"): (0.3, -0.2), ("b", "p"): (-0.1, 0.25), ("ground", "p"): (0.05, 0.4)}
 INDEX = {"ground": -1, "a": 0, "b": 1}

@@ -4,8 +4,8 @@ import math
 
 import numpy as np
 import pytest
-
 from analytic import slider_crank_inverse_dynamics
+
 from jointdyn import post
 from jointdyn.errors import ModelError
 from jointdyn.joints.constraints import AngleDriver, Revolute, Translational
@@ -54,10 +54,23 @@ def test_baumgarte_only_drift_is_reported(crank_system):
 def double_pendulum():
     m = Model("double pendulum", gravity=(0.0, -9.81))
     m.add_ground_point("O", (0.0, 0.0))
-    m.add_body("b1", 1.0, 1.0 / 12, position=(0.5, 0.0), velocity=(0.0, 0.0, 0.0),
-               points={"O": (-0.5, 0), "A": (0.5, 0)})
-    m.add_body("b2", 0.5, 0.5 / 12, position=(1.0, 0.5), angle=math.pi / 2, velocity=(0, 0, 3.0),
-               points={"A": (-0.5, 0), "B": (0.5, 0)})
+    m.add_body(
+        "b1",
+        1.0,
+        1.0 / 12,
+        position=(0.5, 0.0),
+        velocity=(0.0, 0.0, 0.0),
+        points={"O": (-0.5, 0), "A": (0.5, 0)},
+    )
+    m.add_body(
+        "b2",
+        0.5,
+        0.5 / 12,
+        position=(1.0, 0.5),
+        angle=math.pi / 2,
+        velocity=(0, 0, 3.0),
+        points={"A": (-0.5, 0), "B": (0.5, 0)},
+    )
     m.add("pin1", Revolute("ground", "O", "b1", "O"))
     m.add("pin2", Revolute("b1", "A", "b2", "A"))
     return m
@@ -111,6 +124,7 @@ def test_crank_moment_positive_means_ccw_work(crank_system):
 
 
 # ---- bad input -----------------------------------------------------------------------------
+
 
 def test_bad_bodies():
     m = Model()

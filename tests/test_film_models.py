@@ -15,8 +15,17 @@ import numpy as np
 import pytest
 
 from jointdyn import reynolds
-from jointdyn.forces.film_models import (ALSHAER2005, FILM_MODELS, OTT, Alshaer2005, Ott, film_force,
-                                         film_forces, ott_force, pi_film_force)
+from jointdyn.forces.film_models import (
+    ALSHAER2005,
+    FILM_MODELS,
+    OTT,
+    Alshaer2005,
+    Ott,
+    film_force,
+    film_forces,
+    ott_force,
+    pi_film_force,
+)
 
 TABLE = np.zeros((1, 1, 1))
 KERNELS = {"ott": ott_force, "alshaer2005": pi_film_force}
@@ -25,49 +34,139 @@ KERNELS = {"ott": ott_force, "alshaer2005": pi_film_force}
 MU, L, R, OMEGA, GAMMA = 0.4, 0.04, 0.01, 523.6, 0.3  # [Pa·s, m, m, rad/s, rad]
 # (ξ [-], ξ̇ [1/s], γ̇ [rad/s], c [m]); fixed bearing: ω_J = ω, ω_B = 0, Ω = ω − 2γ̇
 STATES = [
-    (0.1, 0, 0, 5e-4), (0.5, 0, 0, 5e-4), (0.9, 0, 0, 5e-5), (0.99, 0, 0, 5e-5),
-    (0.5, 20, 0, 5e-4), (0.5, -20, 0, 5e-4), (0.5, 20, 100, 5e-4), (0.5, -20, -150, 5e-4),
-    (0.9, 5, 50, 5e-5), (0.9, -5, 50, 5e-5), (0.99, 1, 0, 5e-5), (0.99, -1, 0, 5e-5),
-    (0.99, 0, 20, 5e-4), (0.5, 20, 261.8, 5e-4), (0.5, -20, 261.8, 5e-4), (0.5, 20, 400, 5e-4),
-    (0.5, -20, 400, 5e-4), (0.9, 0, 400, 5e-5), (0.1, 100, -300, 5e-4), (0.1, -100, 300, 5e-5),
+    (0.1, 0, 0, 5e-4),
+    (0.5, 0, 0, 5e-4),
+    (0.9, 0, 0, 5e-5),
+    (0.99, 0, 0, 5e-5),
+    (0.5, 20, 0, 5e-4),
+    (0.5, -20, 0, 5e-4),
+    (0.5, 20, 100, 5e-4),
+    (0.5, -20, -150, 5e-4),
+    (0.9, 5, 50, 5e-5),
+    (0.9, -5, 50, 5e-5),
+    (0.99, 1, 0, 5e-5),
+    (0.99, -1, 0, 5e-5),
+    (0.99, 0, 20, 5e-4),
+    (0.5, 20, 261.8, 5e-4),
+    (0.5, -20, 261.8, 5e-4),
+    (0.5, 20, 400, 5e-4),
+    (0.5, -20, 400, 5e-4),
+    (0.9, 0, 400, 5e-5),
+    (0.1, 100, -300, 5e-4),
+    (0.1, -100, 300, 5e-5),
 ]
 # §8.2b "unified" columns (9 significant digits): π-film (F_r, F_t) [N]
 PI_9 = [
-    (-2.02082919, 31.5839963), (-59.5740444, 162.083046), (-61007.8831, 46413.0516),
-    (-664580.101, 148750.541), (-99.8998883, 172.143051), (-25.6066664, 152.023041),
-    (-78.9922102, 109.959985), (-58.5998185, 244.783486), (-57024.8394, 39363.0545),
-    (-42458.4909, 35734.6104), (-708667.831, 152569.11), (-622720.682, 144931.972),
-    (-6138.1004, 1373.86863), (-59.7688146, 0.0), (14.5244073, 0.0), (-74.4030406, -95.1960888),
-    (-0.109818689, -75.9259658), (-32205.0781, -24500.7018), (-138.17931, 71.5520869),
+    (-2.02082919, 31.5839963),
+    (-59.5740444, 162.083046),
+    (-61007.8831, 46413.0516),
+    (-664580.101, 148750.541),
+    (-99.8998883, 172.143051),
+    (-25.6066664, 152.023041),
+    (-78.9922102, 109.959985),
+    (-58.5998185, 244.783486),
+    (-57024.8394, 39363.0545),
+    (-42458.4909, 35734.6104),
+    (-708667.831, 152569.11),
+    (-622720.682, 144931.972),
+    (-6138.1004, 1373.86863),
+    (-59.7688146, 0.0),
+    (14.5244073, 0.0),
+    (-74.4030406, -95.1960888),
+    (-0.109818689, -75.9259658),
+    (-32205.0781, -24500.7018),
+    (-138.17931, 71.5520869),
     (10690.2312, -431.484525),
 ]
 # §8.3b: Ott corrected (F_r, F_t) [N]
 OTT_9 = [
-    (-2.02082919, 31.5839963), (-59.5740444, 162.083046), (-61007.8831, 46413.0516),
-    (-664580.101, 148750.541), (-101.708782, 180.831334), (-27.4155599, 143.334758),
-    (-81.4655828, 117.40925), (-59.8716835, 235.2526), (-57203.4544, 40369.1341),
-    (-42637.1059, 34728.5308), (-709235.892, 154556.315), (-623288.743, 142944.767),
-    (-6138.1004, 1373.86863), (-63.4886354, 0.0), (10.8045866, 0.0), (-77.0939584, -102.164387),
-    (-2.80073641, -68.9576673), (-32205.0781, -24500.7018), (-145.550117, 75.6498345),
+    (-2.02082919, 31.5839963),
+    (-59.5740444, 162.083046),
+    (-61007.8831, 46413.0516),
+    (-664580.101, 148750.541),
+    (-101.708782, 180.831334),
+    (-27.4155599, 143.334758),
+    (-81.4655828, 117.40925),
+    (-59.8716835, 235.2526),
+    (-57203.4544, 40369.1341),
+    (-42637.1059, 34728.5308),
+    (-709235.892, 154556.315),
+    (-623288.743, 142944.767),
+    (-6138.1004, 1373.86863),
+    (-63.4886354, 0.0),
+    (10.8045866, 0.0),
+    (-77.0939584, -102.164387),
+    (-2.80073641, -68.9576673),
+    (-32205.0781, -24500.7018),
+    (-145.550117, 75.6498345),
     (9871.09247, -400.515331),
 ]
 # §8.2 / §8.3 (6 significant digits): (F_x, F_y) [N] at γ = 0.3 rad; §8.2 also θ₁ [rad]
 PI_XY = [
-    (-11.2643, 29.5761), (-104.812, 137.239), (-71999.1, 26311), (-678856, -54290),
-    (-146.31, 134.932), (-69.3889, 137.666), (-107.96, 81.705), (-128.321, 216.533),
-    (-66110.5, 20753), (-51122.4, 21591.2), (-722103, -63670.8), (-637738, -45567.7),
-    (-6269.96, -501.426), (-57.0993, -17.6629), (13.8757, 4.29226), (-42.9476, -112.932),
-    (22.3327, -72.5673), (-23526.2, -32923.7), (-153.153, 27.5215), (10340.3, 2746.97),
+    (-11.2643, 29.5761),
+    (-104.812, 137.239),
+    (-71999.1, 26311),
+    (-678856, -54290),
+    (-146.31, 134.932),
+    (-69.3889, 137.666),
+    (-107.96, 81.705),
+    (-128.321, 216.533),
+    (-66110.5, 20753),
+    (-51122.4, 21591.2),
+    (-722103, -63670.8),
+    (-637738, -45567.7),
+    (-6269.96, -501.426),
+    (-57.0993, -17.6629),
+    (13.8757, 4.29226),
+    (-42.9476, -112.932),
+    (22.3327, -72.5673),
+    (-23526.2, -32923.7),
+    (-153.153, 27.5215),
+    (10340.3, 2746.97),
 ]
-PI_THETA1 = [0, 0, 0, 0, 0.170224, -0.170224, 0.271266, -0.108844, 0.0368368, -0.0368368,
-             0.00574899, -0.00574899, 0, 1.5708, -1.5708, 2.8268, -2.8268, 3.14159, 1.06107,
-             -1.60879]
+PI_THETA1 = [
+    0,
+    0,
+    0,
+    0,
+    0.170224,
+    -0.170224,
+    0.271266,
+    -0.108844,
+    0.0368368,
+    -0.0368368,
+    0.00574899,
+    -0.00574899,
+    0,
+    1.5708,
+    -1.5708,
+    2.8268,
+    -2.8268,
+    3.14159,
+    1.06107,
+    -1.60879,
+]
 OTT_XY = [
-    (-11.2643, 29.5761), (-104.812, 137.239), (-71999.1, 26311), (-678856, -54290),
-    (-150.605, 142.698), (-68.5494, 128.831), (-112.524, 88.0906), (-126.72, 207.052),
-    (-66578.4, 21661.3), (-50995.8, 20577.3), (-723233, -61940.3), (-637694, -47634.1),
-    (-6269.96, -501.426), (-60.653, -18.7622), (10.322, 3.19297), (-43.459, -120.384),
-    (17.7027, -66.7054), (-23526.2, -32923.7), (-161.405, 29.258), (9548.58, 2534.48),
+    (-11.2643, 29.5761),
+    (-104.812, 137.239),
+    (-71999.1, 26311),
+    (-678856, -54290),
+    (-150.605, 142.698),
+    (-68.5494, 128.831),
+    (-112.524, 88.0906),
+    (-126.72, 207.052),
+    (-66578.4, 21661.3),
+    (-50995.8, 20577.3),
+    (-723233, -61940.3),
+    (-637694, -47634.1),
+    (-6269.96, -501.426),
+    (-60.653, -18.7622),
+    (10.322, 3.19297),
+    (-43.459, -120.384),
+    (17.7027, -66.7054),
+    (-23526.2, -32923.7),
+    (-161.405, 29.258),
+    (9548.58, 2534.48),
 ]
 TABLES_9 = {"alshaer2005": PI_9, "ott": OTT_9}
 TABLES_XY = {"alshaer2005": PI_XY, "ott": OTT_XY}
@@ -89,6 +188,7 @@ def kernel(model, xi, xi_dot, Omega, c, mu=MU, R=R, L=L):
 
 
 # ---- spec tables ------------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("model", ["alshaer2005", "ott"])
 @pytest.mark.parametrize("case", range(20))
@@ -125,6 +225,7 @@ def test_spec_table_reynolds_reference(case):
 
 # ---- π-film vs the numerical Reynolds solver over random states ----------------------------------
 
+
 def random_states(n, seed=20050501):
     """Random bearing states: ξ ∈ [0, 0.999] (half of them in 0.9 ≤ ξ ≤ 0.999), ξ̇ of both signs
     over five decades, independent ω_J, ω_B, γ̇ (so Ω of both signs), random γ and bearing data;
@@ -144,9 +245,20 @@ def random_states(n, seed=20050501):
         if xi == 0 and xd == 0:  # F = 0 exactly there (tested separately); keep |F| > 0
             xd = 1.0
         c = 10 ** rng.uniform(-4.7, -3)
-        out.append(dict(xi=xi, xi_dot=xd, omega_journal=wj, omega_bearing=wb, gamma_dot=gd,
-                        mu=10 ** rng.uniform(-2, 0), R=rng.uniform(0.005, 0.05), L=rng.uniform(0.01, 0.1),
-                        c=c, gamma=rng.uniform(-math.pi, math.pi)))
+        out.append(
+            dict(
+                xi=xi,
+                xi_dot=xd,
+                omega_journal=wj,
+                omega_bearing=wb,
+                gamma_dot=gd,
+                mu=10 ** rng.uniform(-2, 0),
+                R=rng.uniform(0.005, 0.05),
+                L=rng.uniform(0.01, 0.1),
+                c=c,
+                gamma=rng.uniform(-math.pi, math.pi),
+            )
+        )
     return out
 
 
@@ -155,8 +267,18 @@ def pi_film_vs_reynolds(n=1000):
     for s in random_states(n):
         Om = s["omega_journal"] + s["omega_bearing"] - 2 * s["gamma_dot"]
         got = pi_film_force(s["xi"], s["xi_dot"], s["xi"] * Om, s["mu"], s["R"], s["L"], s["c"], TABLE)
-        ref = reynolds.pi_film_force(s["xi"], s["xi_dot"], s["gamma_dot"], s["omega_journal"],
-                                     s["omega_bearing"], s["mu"], s["R"], s["L"], s["c"], gamma=s["gamma"])
+        ref = reynolds.pi_film_force(
+            s["xi"],
+            s["xi_dot"],
+            s["gamma_dot"],
+            s["omega_journal"],
+            s["omega_bearing"],
+            s["mu"],
+            s["R"],
+            s["L"],
+            s["c"],
+            gamma=s["gamma"],
+        )
         errs.append(rel(got, ref))
     return np.array(errs)
 
@@ -172,6 +294,7 @@ def test_pi_film_matches_numerical_reynolds():
 
 # ---- classic limits (spec §5) --------------------------------------------------------------------
 
+
 def full_sommerfeld(xi, xi_dot, Omega, k):
     """2π film (spec §5): F_r = −12πkξ̇/(1−ξ²)^{3/2}, F_t = 12πkξΩ/[(2+ξ²)√(1−ξ²)]"""
     w = 1 - xi**2
@@ -184,8 +307,10 @@ def full_sommerfeld(xi, xi_dot, Omega, k):
 def test_steady_half_sommerfeld(model, xi, Omega):
     c = 5e-5
     k, w = k_of(MU, R, L, c), 1 - xi**2
-    ref = (-12 * k * xi**2 * abs(Omega) / ((2 + xi**2) * w),
-           6 * math.pi * k * xi * Omega / ((2 + xi**2) * math.sqrt(w)))
+    ref = (
+        -12 * k * xi**2 * abs(Omega) / ((2 + xi**2) * w),
+        6 * math.pi * k * xi * Omega / ((2 + xi**2) * math.sqrt(w)),
+    )
     # both are exact in this limit (spec §4.3, §5); 1e-13 = a few hundred ulp for ~10 flops
     assert rel(kernel(model, xi, 0.0, Omega, c), ref) <= 1e-13
 
@@ -213,8 +338,18 @@ def test_full_film_numerical_vs_closed_form_and_complement():
     for s in random_states(60, seed=11):
         xi, xd = s["xi"], s["xi_dot"]
         Om = s["omega_journal"] + s["omega_bearing"] - 2 * s["gamma_dot"]
-        num = reynolds.full_film_force(xi, xd, s["gamma_dot"], s["omega_journal"], s["omega_bearing"],
-                                       s["mu"], s["R"], s["L"], s["c"], gamma=s["gamma"])
+        num = reynolds.full_film_force(
+            xi,
+            xd,
+            s["gamma_dot"],
+            s["omega_journal"],
+            s["omega_bearing"],
+            s["mu"],
+            s["R"],
+            s["L"],
+            s["c"],
+            gamma=s["gamma"],
+        )
         ref = full_sommerfeld(xi, xd, Om, k_of(s["mu"], s["R"], s["L"], s["c"]))
         a = kernel("alshaer2005", xi, xd, Om, s["c"], s["mu"], s["R"], s["L"])
         b = kernel("alshaer2005", xi, -xd, -Om, s["c"], s["mu"], s["R"], s["L"])
@@ -232,7 +367,13 @@ def test_pure_squeeze_closed_form(xi, xi_dot):
     """Ω = 0: F_r = −12kξ̇/(1−ξ²)^{3/2}[π/2 + sgn(ξ̇)(arcsin ξ + ξ√(1−ξ²))], F_t = 0 (spec §5)."""
     c = 5e-4
     k, w = k_of(MU, R, L, c), 1 - xi**2
-    fr = -12 * k * xi_dot / w**1.5 * (math.pi / 2 + math.copysign(1, xi_dot) * (math.asin(xi) + xi * math.sqrt(w)))
+    fr = (
+        -12
+        * k
+        * xi_dot
+        / w**1.5
+        * (math.pi / 2 + math.copysign(1, xi_dot) * (math.asin(xi) + xi * math.sqrt(w)))
+    )
     got = kernel("alshaer2005", xi, xi_dot, 0.0, c)
     assert got[1] == 0.0
     # for ξ̇ < 0 at ξ = 0.999 the bracket cancels to 1e-4 of its terms, so the reference formula
@@ -262,6 +403,7 @@ def test_small_eccentricity_isotropic_damping_and_cross_stiffness(model):
 
 
 # ---- continuity and sign properties (spec §6) ----------------------------------------------------
+
 
 @pytest.mark.parametrize("model", ["alshaer2005", "ott"])
 @pytest.mark.parametrize("xi", [0.1, 0.5, 0.9, 0.99])
@@ -336,7 +478,10 @@ def test_near_wall_against_50_digit_evaluation():
                 A, B = mp.mpf(xd), X * mp.mpf(Om) / (2 + X**2)
                 rho, w = mp.sqrt(A**2 + B**2), (1 - X) * (1 + X)
                 dd = 2 * mp.atan2(rho * mp.sqrt(w), -X * A)
-                ref = (float(-6 * k * (A * dd / w**1.5 + 2 * X * rho / w)), float(6 * k * B * dd / mp.sqrt(w)))
+                ref = (
+                    float(-6 * k * (A * dd / w**1.5 + 2 * X * rho / w)),
+                    float(6 * k * B * dd / mp.sqrt(w)),
+                )
                 got = kernel("alshaer2005", xi, xd, Om, c)
                 assert all(map(math.isfinite, got))
                 # spec §3.3 reports 3e-14 |F| for the guarded form; 1e-12 allows for the ≤ 30 flops
@@ -355,6 +500,7 @@ def test_no_nan_down_to_one_minus_xi_1e_12(model):
 
 # ---- registry, dispatcher, input validation ------------------------------------------------------
 
+
 def test_registry_and_dispatcher():
     assert FILM_MODELS == {"ott": Ott, "alshaer2005": Alshaer2005}
     assert (Ott.code, Alshaer2005.code) == (OTT, ALSHAER2005) == (0, 1)
@@ -365,22 +511,35 @@ def test_registry_and_dispatcher():
     assert all(math.isnan(v) for v in film_force(99, *args))
 
 
-GOOD = dict(xi=[0.5, 0.6], xi_dot=1.0, gamma=0.0, gamma_dot=0.0, omega_journal=100.0, omega_bearing=0.0,
-            viscosity=0.4, length=0.04, radius=0.01, clearance=5e-4)
+GOOD = dict(
+    xi=[0.5, 0.6],
+    xi_dot=1.0,
+    gamma=0.0,
+    gamma_dot=0.0,
+    omega_journal=100.0,
+    omega_bearing=0.0,
+    viscosity=0.4,
+    length=0.04,
+    radius=0.01,
+    clearance=5e-4,
+)
 
 
-@pytest.mark.parametrize("name, value, words", [
-    ("clearance", 0.0, ["clearance", "[m]", "> 0"]),
-    ("clearance", -1e-4, ["clearance", "[m]", "> 0"]),
-    ("viscosity", 0.0, ["viscosity", "[Pa·s]", "> 0"]),
-    ("length", -0.04, ["length", "[m]", "> 0"]),
-    ("radius", 0.0, ["radius", "[m]", "> 0"]),
-    ("xi", [0.5, 1.0], ["xi", "[-]", "[0, 1)", "index 1"]),
-    ("xi", [-0.1, 0.5], ["xi", "[-]", "[0, 1)", "index 0"]),
-    ("xi_dot", [1.0, math.nan], ["xi_dot", "[1/s]", "finite", "index 1"]),
-    ("gamma_dot", [0.0, math.inf], ["gamma_dot", "[rad/s]", "finite", "index 1"]),
-    ("omega_bearing", -math.inf, ["omega_bearing", "[rad/s]", "finite", "index 0"]),
-])
+@pytest.mark.parametrize(
+    "name, value, words",
+    [
+        ("clearance", 0.0, ["clearance", "[m]", "> 0"]),
+        ("clearance", -1e-4, ["clearance", "[m]", "> 0"]),
+        ("viscosity", 0.0, ["viscosity", "[Pa·s]", "> 0"]),
+        ("length", -0.04, ["length", "[m]", "> 0"]),
+        ("radius", 0.0, ["radius", "[m]", "> 0"]),
+        ("xi", [0.5, 1.0], ["xi", "[-]", "[0, 1)", "index 1"]),
+        ("xi", [-0.1, 0.5], ["xi", "[-]", "[0, 1)", "index 0"]),
+        ("xi_dot", [1.0, math.nan], ["xi_dot", "[1/s]", "finite", "index 1"]),
+        ("gamma_dot", [0.0, math.inf], ["gamma_dot", "[rad/s]", "finite", "index 1"]),
+        ("omega_bearing", -math.inf, ["omega_bearing", "[rad/s]", "finite", "index 0"]),
+    ],
+)
 def test_bad_input_names_parameter_and_unit(name, value, words):
     with pytest.raises(ValueError) as err:
         film_forces("alshaer2005", **{**GOOD, name: value})
@@ -394,18 +553,36 @@ def test_unknown_model_lists_valid_names():
 
 
 def test_broadcasting():
-    F = film_forces("ott", np.array([[0.1], [0.5]]), np.array([-1.0, 0.0, 1.0]), 0.2, 0.0, 100.0, 0.0,
-                    0.4, 0.04, 0.01, 5e-4)
+    F = film_forces(
+        "ott",
+        np.array([[0.1], [0.5]]),
+        np.array([-1.0, 0.0, 1.0]),
+        0.2,
+        0.0,
+        100.0,
+        0.0,
+        0.4,
+        0.04,
+        0.01,
+        5e-4,
+    )
     assert all(v.shape == (2, 3) for v in F.values())
     assert F["Fr"][1, 2] == ott_force(0.5, 1.0, 50.0, 0.4, 0.01, 0.04, 5e-4, TABLE)[0]
 
 
 if __name__ == "__main__":  # measured agreement, for the record
     e = pi_film_vs_reynolds(1000)
-    print(f"alshaer2005 vs numerical Reynolds π-film, 1000 states: max rel {e.max():.2e}, median {np.median(e):.2e}")
+    print(
+        f"alshaer2005 vs numerical Reynolds π-film, 1000 states: max rel {e.max():.2e}, median {np.median(e):.2e}"
+    )
     for m in ("alshaer2005", "ott"):
-        errs = [rel(kernel(m, xi, xd, OMEGA - 2 * gd, c), TABLES_9[m][i]) for i, (xi, xd, gd, c) in enumerate(STATES)]
+        errs = [
+            rel(kernel(m, xi, xd, OMEGA - 2 * gd, c), TABLES_9[m][i])
+            for i, (xi, xd, gd, c) in enumerate(STATES)
+        ]
         print(f"{m} vs spec 9-digit table: max rel {max(errs):.2e}")
-    errs = [rel(reynolds.pi_film_force(xi, xd, gd, OMEGA, 0.0, MU, R, L, c, gamma=GAMMA), PI_9[i])
-            for i, (xi, xd, gd, c) in enumerate(STATES)]
+    errs = [
+        rel(reynolds.pi_film_force(xi, xd, gd, OMEGA, 0.0, MU, R, L, c, gamma=GAMMA), PI_9[i])
+        for i, (xi, xd, gd, c) in enumerate(STATES)
+    ]
     print(f"numerical Reynolds π-film vs spec 9-digit table: max rel {max(errs):.2e}")

@@ -7,7 +7,6 @@ at the peak), RMS 1.2 %, impacts 29–30, minimum moment 10 % (not pinned: chaot
 import json
 
 import pytest
-
 from golden_features import GOLDEN, features
 
 
@@ -36,6 +35,8 @@ def test_lubricated(now, gold, case):
 
 def test_dry(now, gold):
     d, g = now["dry"], gold["dry"]
-    assert d["max_penetration"] == pytest.approx(g["max_penetration"], rel=3e-3)  # first impact; spread 1.7e-3
+    assert d["max_penetration"] == pytest.approx(
+        g["max_penetration"], rel=3e-3
+    )  # first impact; spread 1.7e-3
     assert abs(d["impacts"] - g["impacts"]) <= 3  # constant over the rtol range; ±3 for platform round-off
     assert d["rms_moment"] == pytest.approx(g["rms_moment"], rel=0.03)  # 3× the measured 1.1 % spread

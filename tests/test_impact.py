@@ -18,7 +18,9 @@ K = 6.9e10  # spec/benchmark.md journal-in-bearing stiffness [N/m^1.5]
 def impact(law, v0=1.0, mass=0.14, solver="dopri5", rtol=1e-9):
     m = Model("impact", gravity=(0.0, 0.0))
     m.add_ground_point("O", (0.0, 0.0))
-    m.add_body("pin", mass, 1e-4, position=(0.0, 0.0), velocity=(v0 * 0.6, v0 * 0.8, 0.0), points={"c": (0.0, 0.0)})
+    m.add_body(
+        "pin", mass, 1e-4, position=(0.0, 0.0), velocity=(v0 * 0.6, v0 * 0.8, 0.0), points={"c": (0.0, 0.0)}
+    )
     m.add("joint", ClearanceJoint("ground", "O", "pin", "c", RB, RJ, contact=law))
     sysm = m.compile(centre_imperfect=False)
     c = RB - RJ
@@ -36,8 +38,12 @@ def one_dof_restitution(law, v0=1.0, mass=0.14):
     from scipy.integrate import solve_ivp
 
     Kl, n, cr = law.stiffness, law.exponent, law.restitution
-    chi = {"LankaraniNikravesh": 0.75 * (1 - cr**2), "HuntCrossley": 1.5 * (1 - cr),
-           "Flores": 8 * (1 - cr) / (5 * cr), "Hertz": 0.0}[type(law).__name__]
+    chi = {
+        "LankaraniNikravesh": 0.75 * (1 - cr**2),
+        "HuntCrossley": 1.5 * (1 - cr),
+        "Flores": 8 * (1 - cr) / (5 * cr),
+        "Hertz": 0.0,
+    }[type(law).__name__]
 
     def f(t, y):
         d = max(y[0], 0.0)
@@ -49,8 +55,15 @@ def one_dof_restitution(law, v0=1.0, mass=0.14):
     return -sol.y_events[0][0][1] / v0
 
 
-LAWS = [(LankaraniNikravesh, 0.9), (LankaraniNikravesh, 0.7), (HuntCrossley, 0.9), (HuntCrossley, 0.7),
-        (Flores, 0.9), (Flores, 0.7), (Flores, 0.5)]
+LAWS = [
+    (LankaraniNikravesh, 0.9),
+    (LankaraniNikravesh, 0.7),
+    (HuntCrossley, 0.9),
+    (HuntCrossley, 0.7),
+    (Flores, 0.9),
+    (Flores, 0.7),
+    (Flores, 0.5),
+]
 
 
 @pytest.mark.parametrize("law,cr", LAWS)
@@ -64,8 +77,10 @@ def test_element_restitution_equals_the_law(law, cr, solver):
     assert vt < 1e-9  # central impact: no tangential velocity created
 
 
-@pytest.mark.parametrize("law,cr,tol", [(LankaraniNikravesh, 0.9, 0.02), (HuntCrossley, 0.9, 0.05),
-                                        (Flores, 0.9, 0.05), (Flores, 0.7, 0.05)])
+@pytest.mark.parametrize(
+    "law,cr,tol",
+    [(LankaraniNikravesh, 0.9, 0.02), (HuntCrossley, 0.9, 0.05), (Flores, 0.9, 0.05), (Flores, 0.7, 0.05)],
+)
 def test_restitution_matches_the_laws_intent_in_their_validity_range(law, cr, tol):
     """Issue 4 tolerances: LN 2 %, Hunt–Crossley/Flores 5 %. LN and Hunt–Crossley are derived
     for c_r close to 1; at c_r = 0.7 the laws themselves give 0.796 and 0.768 (see the 1-DOF
@@ -73,6 +88,8 @@ def test_restitution_matches_the_laws_intent_in_their_validity_range(law, cr, to
     for low restitution."""
     e, _ = impact(law(stiffness=K, exponent=1.5, restitution=cr))
     assert e == pytest.approx(cr, rel=tol)
+
+
 def test_hertz_conserves_energy():
     e, _ = impact(Hertz(stiffness=K, exponent=1.5))
     # elastic law: rebound speed = approach speed to integrator tolerance (rtol 1e-9)

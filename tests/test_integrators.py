@@ -33,7 +33,9 @@ def exact(t, k, d, mass, x0):
 @pytest.mark.parametrize("solver", ["dopri5", "rodas4", "scipy-radau"])
 def test_oscillator_closed_form(solver):
     k, d, mass, x0 = 1e4, 5.0, 0.2, 1e-3
-    res = simulate(oscillator(k, d, mass, x0), SimConfig(t_end=0.2, n_out=201, solver=solver, rtol=1e-9, atol=1e-13))
+    res = simulate(
+        oscillator(k, d, mass, x0), SimConfig(t_end=0.2, n_out=201, solver=solver, rtol=1e-9, atol=1e-13)
+    )
     x = res.coordinate("b", "x") - 0.1
     # rtol 1e-9 on a state of size 1e-3 m: global error well below 1e-9 m
     np.testing.assert_allclose(x, exact(res.t, k, d, mass, x0), atol=1e-9)
@@ -42,7 +44,9 @@ def test_oscillator_closed_form(solver):
 def test_rosenbrock_handles_stiff_damping_in_few_steps():
     """Damping time constant m/d = 2e-8 s (the c = 0.05 mm film class): Rodas4 stays cheap."""
     k, d, mass, x0 = 1e4, 1e7, 0.2, 1e-3
-    res = simulate(oscillator(k, d, mass, x0), SimConfig(t_end=1e-3, n_out=101, solver="rodas4", rtol=1e-8, atol=1e-12))
+    res = simulate(
+        oscillator(k, d, mass, x0), SimConfig(t_end=1e-3, n_out=101, solver="rodas4", rtol=1e-8, atol=1e-12)
+    )
     x = res.coordinate("b", "x") - 0.1
     np.testing.assert_allclose(x, exact(res.t, k, d, mass, x0), atol=1e-9)
     # explicit methods would need t_end/(2·2e-8) ≈ 25,000 steps; a stiff method needs ≪ 1,000

@@ -54,8 +54,15 @@ def state_with_eccentricity(rng, xi, phi_a=None, phi_b=None):
 ELEMENTS = {
     "alshaer2005": JournalBearing("a", "hole", "b", "pin", RB, RJ, L, MU, film="alshaer2005"),
     "ott": JournalBearing("a", "hole", "b", "pin", RB, RJ, L, MU, film="ott"),
-    "dry": ClearanceJoint("a", "hole", "b", "pin", RB, RJ,
-                          contact=LankaraniNikravesh(stiffness=6.9e10, exponent=1.5, restitution=0.9)),
+    "dry": ClearanceJoint(
+        "a",
+        "hole",
+        "b",
+        "pin",
+        RB,
+        RJ,
+        contact=LankaraniNikravesh(stiffness=6.9e10, exponent=1.5, restitution=0.9),
+    ),
 }
 
 
@@ -88,14 +95,14 @@ def test_rotating_the_whole_system_rotates_the_forces(name):
         R = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
         q2, qd2 = q.copy(), qd.copy()
         for k in range(2):
-            q2[3 * k:3 * k + 2] = R @ q[3 * k:3 * k + 2]
+            q2[3 * k : 3 * k + 2] = R @ q[3 * k : 3 * k + 2]
             q2[3 * k + 2] += a
-            qd2[3 * k:3 * k + 2] = R @ qd[3 * k:3 * k + 2]
+            qd2[3 * k : 3 * k + 2] = R @ qd[3 * k : 3 * k + 2]
         Q2, _ = forces(sysm, q2, qd2)
         scale = np.abs(Q).max()
         for k in range(2):
             # forces rotate with the frame, moments are invariant (round-off of |F|·|q|)
-            np.testing.assert_allclose(Q2[3 * k:3 * k + 2], R @ Q[3 * k:3 * k + 2], atol=1e-10 * scale)
+            np.testing.assert_allclose(Q2[3 * k : 3 * k + 2], R @ Q[3 * k : 3 * k + 2], atol=1e-10 * scale)
             np.testing.assert_allclose(Q2[3 * k + 2], Q[3 * k + 2], atol=1e-10 * scale)
 
 
@@ -119,8 +126,9 @@ def test_element_matches_film_front_with_rotating_bearing(film):
         ex, ey = out[0], out[1]
         xi_dot = (math.hypot(exp_, eyp) - math.hypot(exm, eym)) / (2 * h) / C
         gdot = (math.atan2(eyp, exp_) - math.atan2(eym, exm)) / (2 * h)
-        ref = film_forces(film, math.hypot(ex, ey) / C, xi_dot, math.atan2(ey, ex), gdot,
-                          qd[5], qd[2], MU, L, RJ, C)
+        ref = film_forces(
+            film, math.hypot(ex, ey) / C, xi_dot, math.atan2(ey, ex), gdot, qd[5], qd[2], MU, L, RJ, C
+        )
         F = math.hypot(ref["Fx"], ref["Fy"])
         # central difference of e(t) with h = 1e-8 s: relative error ~1e-7 in ξ̇, γ̇
         assert abs(out[4] - ref["Fx"]) < 1e-5 * F and abs(out[5] - ref["Fy"]) < 1e-5 * F
@@ -141,21 +149,25 @@ def test_film_breakdown_without_contact_law_stops_with_clear_error():
     that names the element and the remedy, keeping what was computed."""
     sysm = slider_crank("alshaer2005", viscosity=1e-5).compile()
     with pytest.raises(SimulationError, match=r"piston_pin.*ξ = 0\.99.*contact law") as err:
-        simulate(sysm, SimConfig(t_end=0.012, n_out=121, solver="rodas4", rtol=1e-6, atol=1e-10,
-                                 max_steps=20_000))
+        simulate(
+            sysm, SimConfig(t_end=0.012, n_out=121, solver="rodas4", rtol=1e-6, atol=1e-10, max_steps=20_000)
+        )
     part = err.value.results
     assert part is not None and 0 < len(part.t) < 121  # what was computed is kept
     assert np.all(part.eout[:, 0, 2] < 1.0)
 
 
-@pytest.mark.parametrize("kw,pattern", [
-    (dict(journal_radius=0.0105), r"journal_radius = 0.0105 \[m\]: must be in \(0, bearing_radius"),
-    (dict(journal_radius=0.011), r"journal_radius.*\[m\]"),
-    (dict(viscosity=0.0), r"viscosity = 0.0 \[Pa·s\]: must be > 0"),
-    (dict(length=-0.01), r"length = -0.01 \[m\]: must be > 0"),
-    (dict(film="sommerfeld"), r"film = 'sommerfeld'.*valid: .*'alshaer2005'.*'ott'"),
-    (dict(viscosity=float("nan")), r"viscosity = nan"),
-])
+@pytest.mark.parametrize(
+    "kw,pattern",
+    [
+        (dict(journal_radius=0.0105), r"journal_radius = 0.0105 \[m\]: must be in \(0, bearing_radius"),
+        (dict(journal_radius=0.011), r"journal_radius.*\[m\]"),
+        (dict(viscosity=0.0), r"viscosity = 0.0 \[Pa·s\]: must be > 0"),
+        (dict(length=-0.01), r"length = -0.01 \[m\]: must be > 0"),
+        (dict(film="sommerfeld"), r"film = 'sommerfeld'.*valid: .*'alshaer2005'.*'ott'"),
+        (dict(viscosity=float("nan")), r"viscosity = nan"),
+    ],
+)
 def test_bad_bearing_parameters_are_named(kw, pattern):
     from jointdyn.errors import ModelError
 

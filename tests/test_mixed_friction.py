@@ -1,7 +1,5 @@
 """Mixed film/contact regime of a lubricated joint, and friction in contact."""
 
-import math
-
 import numpy as np
 import pytest
 
@@ -18,13 +16,20 @@ C, HA, MU = 5e-5, 1e-6, 1e-3  # tight bearing, 1 µm asperities, a very thin oil
 
 
 def law(c):
-    K = journal_bearing_stiffness(sc.JOURNAL_RADIUS + c, sc.JOURNAL_RADIUS, sc.YOUNG, sc.POISSON, sc.YOUNG, sc.POISSON)
+    K = journal_bearing_stiffness(
+        sc.JOURNAL_RADIUS + c, sc.JOURNAL_RADIUS, sc.YOUNG, sc.POISSON, sc.YOUNG, sc.POISSON
+    )
     return LankaraniNikravesh(stiffness=K, exponent=1.5, restitution=0.9)
 
 
 def test_lubricated_joint_runs_through_the_mixed_regime():
-    res, cols, s = run_slider_crank("alshaer2005", 1.0, model_kw=dict(
-        clearance=C, viscosity=MU, contact=law(C), asperity_height=HA), rtol=1e-7, atol=1e-11)
+    res, cols, s = run_slider_crank(
+        "alshaer2005",
+        1.0,
+        model_kw=dict(clearance=C, viscosity=MU, contact=law(C), asperity_height=HA),
+        rtol=1e-7,
+        atol=1e-11,
+    )
     # the film alone cannot keep h_min above the asperities: contact carries part of the cycle
     assert s["max_xi"] > 1 - HA / C and s["contact_time_s"] > 0
     assert 0.05 < s["contact_fraction"] < 0.95
@@ -41,8 +46,9 @@ def test_lubricated_joint_runs_through_the_mixed_regime():
 def test_same_bearing_without_contact_law_stops_with_a_clear_error():
     sysm = sc.slider_crank("alshaer2005", clearance=C, viscosity=MU).compile()
     with pytest.raises(SimulationError, match=r"piston_pin.*contact law"):
-        simulate(sysm, SimConfig(t_end=0.012, n_out=121, solver="rodas4", rtol=1e-7, atol=1e-11,
-                                 max_steps=20_000))
+        simulate(
+            sysm, SimConfig(t_end=0.012, n_out=121, solver="rodas4", rtol=1e-7, atol=1e-11, max_steps=20_000)
+        )
 
 
 def spinning_impact(friction):
@@ -51,7 +57,10 @@ def spinning_impact(friction):
     m = Model("spin", gravity=(0.0, 0.0))
     m.add_ground_point("O", (0.0, 0.0))
     m.add_body("pin", 0.14, 1e-5, velocity=(1.0, 0.0, 200.0), points={"c": (0.0, 0.0)})
-    m.add("joint", ClearanceJoint("ground", "O", "pin", "c", 0.0105, 0.0100, contact=law(5e-4), friction=friction))
+    m.add(
+        "joint",
+        ClearanceJoint("ground", "O", "pin", "c", 0.0105, 0.0100, contact=law(5e-4), friction=friction),
+    )
     res = simulate(m.compile(centre_imperfect=False), SimConfig(t_end=8e-4, n_out=3, rtol=1e-9, atol=1e-13))
     ke = 0.5 * 0.14 * (res.qd[:, 0] ** 2 + res.qd[:, 1] ** 2) + 0.5 * 1e-5 * res.qd[:, 2] ** 2
     assert res.mem[-1, 0, 2] == 1

@@ -12,8 +12,9 @@ import pytest
 
 pytestmark = pytest.mark.slow
 
-pytest.importorskip("exudyn", reason="exudyn not installed: pip install -e .[peers] to run the "
-                                     "Exudyn peer-benchmark tests")
+pytest.importorskip(
+    "exudyn", reason="exudyn not installed: pip install -e .[peers] to run the Exudyn peer-benchmark tests"
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:

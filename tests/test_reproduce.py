@@ -46,20 +46,35 @@ def test_report_renders_with_images_in_headless_browser(quick_run, tmp_path):
         pytest.skip("no headless chromium on this machine (apt-get install chromium)")
     out, _ = quick_run
     page = (out / "report.html").read_text()
-    probe = ("<script>window.addEventListener('load',()=>{const n=[...document.images]"
-             ".filter(i=>i.complete&&i.naturalWidth>0).length;document.body.setAttribute('data-loaded',n);"
-             "document.body.setAttribute('data-total',document.images.length)});</script></body>")
+    probe = (
+        "<script>window.addEventListener('load',()=>{const n=[...document.images]"
+        ".filter(i=>i.complete&&i.naturalWidth>0).length;document.body.setAttribute('data-loaded',n);"
+        "document.body.setAttribute('data-total',document.images.length)});</script></body>"
+    )
     test_page = tmp_path / "probe.html"
     test_page.write_text(page.replace("</body>", probe))
-    flags = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync",
-             f"--user-data-dir={tmp_path / 'profile'}", "--virtual-time-budget=10000"]
-    dom = subprocess.run([browser, *flags, "--dump-dom", test_page.as_uri()], capture_output=True,
-                         text=True, timeout=120).stdout
+    flags = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={tmp_path / 'profile'}",
+        "--virtual-time-budget=10000",
+    ]
+    dom = subprocess.run(
+        [browser, *flags, "--dump-dom", test_page.as_uri()], capture_output=True, text=True, timeout=120
+    ).stdout
     loaded = int(re.search(r'data-loaded="(\d+)"', dom).group(1))
     total = int(re.search(r'data-total="(\d+)"', dom).group(1))
     assert total >= 8 and loaded == total
     shot = tmp_path / "shot.png"
-    subprocess.run([browser, *flags, f"--screenshot={shot}", "--window-size=1200,2000", test_page.as_uri()],
-                   capture_output=True, timeout=120)
+    subprocess.run(
+        [browser, *flags, f"--screenshot={shot}", "--window-size=1200,2000", test_page.as_uri()],
+        capture_output=True,
+        timeout=120,
+    )
     assert shot.stat().st_size > 20_000  # a rendered page with figures, not a blank one

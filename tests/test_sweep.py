@@ -29,15 +29,17 @@ def test_local_and_dask_executors_give_identical_results(tmp_path):
     distributed = pytest.importorskip("distributed", reason="the [dist] extra is needed for Dask sweeps")
     spec = SweepSpec(base=BASE, grid={"speed": [200.0, 400.0], "gravity": [0.0, 9.81]})
     local = run_sweep(spec, tmp_path / "local", workers=2)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, host="127.0.0.1",
-                                  dashboard_address=None, processes=True) as cluster:
+    with distributed.LocalCluster(
+        n_workers=2, threads_per_worker=1, host="127.0.0.1", dashboard_address=None, processes=True
+    ) as cluster:
         dask = run_sweep(spec, tmp_path / "dask", scheduler=cluster.scheduler_address)
     for m in ("peak_moment", "min_moment", "rms_moment"):
         np.testing.assert_array_equal(local[m].values, dask[m].values)  # same compiled code, same inputs
     assert local["peak_moment"].dims == ("speed", "gravity")
     # higher speed, larger inertial moment (∝ ω²): a physical sanity check of the grid layout
     assert float(local["peak_moment"].sel(speed=400.0, gravity=0.0)) > 3.5 * float(
-        local["peak_moment"].sel(speed=200.0, gravity=0.0))
+        local["peak_moment"].sel(speed=200.0, gravity=0.0)
+    )
 
 
 def test_failed_case_is_recorded_and_sweep_goes_on(tmp_path):
@@ -51,10 +53,13 @@ def test_killed_sweep_resumes_without_recomputing(tmp_path):
     sweep_file = tmp_path / "sweep.toml"
     sweep_file.write_text(
         '[base]\nmodel = "slider-crank"\njoint = "perfect"\nrevs = 2.0\nsamples_per_rev = 360\n'
-        "[grid]\nspeed = [" + ", ".join(f"{100.0 + 10 * i}" for i in range(16)) + "]\n")
+        "[grid]\nspeed = [" + ", ".join(f"{100.0 + 10 * i}" for i in range(16)) + "]\n"
+    )
     out = tmp_path / "out"
-    code = (f"from jointdyn.sweep import load_sweep, run_sweep; "
-            f"run_sweep(load_sweep({str(sweep_file)!r}), {str(out)!r}, workers=1)")
+    code = (
+        f"from jointdyn.sweep import load_sweep, run_sweep; "
+        f"run_sweep(load_sweep({str(sweep_file)!r}), {str(out)!r}, workers=1)"
+    )
     proc = subprocess.Popen([sys.executable, "-c", code], start_new_session=True)
     cdir = out / "cases"
     t0 = time.time()
@@ -77,6 +82,6 @@ def test_bad_sweep_files(tmp_path):
     f.write_text('[base]\nmodel = "slider-crank"\n[grid]\nclearence = [1e-4]\n')
     with pytest.raises(ValueError, match="clearence.*valid"):
         load_sweep(f)
-    f.write_text('[base]\n[gird]\nx = [1]\n')
+    f.write_text("[base]\n[gird]\nx = [1]\n")
     with pytest.raises(ValueError, match="unknown table.*gird"):
         load_sweep(f)

@@ -36,8 +36,10 @@ def test_time_table_drives_a_free_slider_exactly():
 
 
 def test_angle_argument_wraps_with_the_period():
-    f = TabulatedForce("s", "c", x=(0.0, math.pi, 2 * math.pi), y=(0.0, 10.0, 0.0), argument="s", period=2 * math.pi)
-    with pytest.raises(Exception):
+    f = TabulatedForce(
+        "s", "c", x=(0.0, math.pi, 2 * math.pi), y=(0.0, 10.0, 0.0), argument="s", period=2 * math.pi
+    )
+    with pytest.raises(ValueError, match="strictly increasing"):
         TabulatedForce("s", "c", x=(0.0, 0.0), y=(1.0, 2.0)).validate()
     sysm = slider(f)  # the slider's angle is locked at 0: force = table(0) = 0
     res = simulate(sysm, SimConfig(t_end=0.1, n_out=3))
@@ -47,8 +49,15 @@ def test_angle_argument_wraps_with_the_period():
 def test_engine_example_energy_balance():
     """Single-cylinder engine file with the gas force switched off: the work of the drive plus
     the (dissipative) work of both lubricated bearings equals the change of mechanical energy."""
-    model, cfg = load_model(EXAMPLES / "engine_single_cylinder.toml",
-                            ["elements.gas.x=[0.0, 1.0]", "elements.gas.y=[0.0, 0.0]", "simulation.t_end=0.02", "simulation.n_out=4001"])
+    model, cfg = load_model(
+        EXAMPLES / "engine_single_cylinder.toml",
+        [
+            "elements.gas.x=[0.0, 1.0]",
+            "elements.gas.y=[0.0, 0.0]",
+            "simulation.t_end=0.02",
+            "simulation.n_out=4001",
+        ],
+    )
     sysm = model.compile()
     res = simulate(sysm, cfg)
     mass = 1.0 / sysm.minv

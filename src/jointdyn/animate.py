@@ -44,7 +44,7 @@ def animate(results_file, out, frames: int = 120, fps: int = 20):
     elements = list(ds["element"].values)
 
     def world(b, i):
-        x, y, phi = q[i, 3 * bodies.index(b): 3 * bodies.index(b) + 3]
+        x, y, phi = q[i, 3 * bodies.index(b) : 3 * bodies.index(b) + 3]
         c, s = np.cos(phi), np.sin(phi)
         loc = outlines[b]
         return x + c * loc[:, 0] - s * loc[:, 1], y + s * loc[:, 0] + c * loc[:, 1]

@@ -9,17 +9,26 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-app = typer.Typer(help="jointdyn: planar mechanisms with ideal, clearance and lubricated joints.",
-                  no_args_is_help=True, add_completion=False)
+app = typer.Typer(
+    help="jointdyn: planar mechanisms with ideal, clearance and lubricated joints.",
+    no_args_is_help=True,
+    add_completion=False,
+)
 console = Console()
 
 
 def _progress(description: str):
     from rich.progress import BarColumn, Progress, TimeElapsedColumn, TimeRemainingColumn
 
-    return Progress("[progress.description]{task.description}", BarColumn(),
-                    "[progress.percentage]{task.percentage:>3.0f}%", TimeElapsedColumn(),
-                    TimeRemainingColumn(), console=console, transient=False)
+    return Progress(
+        "[progress.description]{task.description}",
+        BarColumn(),
+        "[progress.percentage]{task.percentage:>3.0f}%",
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        console=console,
+        transient=False,
+    )
 
 
 def _joint_kw(joint, clearance, viscosity, length, friction, contact, asperity_height) -> dict:
@@ -54,8 +63,12 @@ def run(
     clearance: float = typer.Option(0.5e-3, help="radial clearance c of an imperfect joint [m]"),
     viscosity: float = typer.Option(0.4, help="lubricant dynamic viscosity [Pa·s]"),
     length: float = typer.Option(0.04, help="bearing length [m]"),
-    friction: float = typer.Option(0.0, help="Ambrósio friction coefficient of contact (0 = frictionless) [-]"),
-    contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact (mixed regime)"),
+    friction: float = typer.Option(
+        0.0, help="Ambrósio friction coefficient of contact (0 = frictionless) [-]"
+    ),
+    contact: bool = typer.Option(
+        False, help="lubricated joint: add Lankarani–Nikravesh asperity contact (mixed regime)"
+    ),
     asperity_height: float = typer.Option(0.0, help="mixed regime: contact starts at h_min < this [m]"),
     set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
 ):
@@ -70,9 +83,11 @@ def run(
             res = run_model_file(model, out, overrides=set_)
         except (ModelError, ValueError, SimulationError) as err:
             console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-            raise typer.Exit(2)
-        console.print(f"{res.system.name}: {len(res.t)} samples, {res.stats['rhs_evaluations']} RHS evaluations, "
-                      f"{res.wall_time:.3f} s; wrote {out}/results.nc, timeseries.csv, model.toml")
+            raise typer.Exit(2) from None
+        console.print(
+            f"{res.system.name}: {len(res.t)} samples, {res.stats['rhs_evaluations']} RHS evaluations, "
+            f"{res.wall_time:.3f} s; wrote {out}/results.nc, timeseries.csv, model.toml"
+        )
         return
     if set_:
         raise typer.BadParameter("--set applies to model files only", param_hint="--set")
@@ -82,12 +97,18 @@ def run(
         with _progress("run") as prog:
             task = prog.add_task(f"slider-crank ({joint})", total=1.0)
             res, cols, summary = run_slider_crank(
-                joint, revs, out=out, progress=lambda f: prog.update(task, completed=f),
+                joint,
+                revs,
+                out=out,
+                progress=lambda f: prog.update(task, completed=f),
                 model_kw=_joint_kw(joint, clearance, viscosity, length, friction, contact, asperity_height),
-                solver=solver, rtol=rtol, atol=atol)
+                solver=solver,
+                rtol=rtol,
+                atol=atol,
+            )
     except (ValueError, SimulationError) as err:
         console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2)
+        raise typer.Exit(2) from None
     tab = Table(title=f"slider-crank, {joint} piston pin ({revs:g} rev)")
     tab.add_column("quantity")
     tab.add_column("value", justify="right")
@@ -106,7 +127,7 @@ def reproduce(
 ):
     """Run the paper's comparison (perfect, dry, Ott, π-film) and write figures + report.html."""
     from .errors import SimulationError
-    from .reproduce import PAPER_CASES, BEYOND_CASES, reproduce_alshaer2005, summary_markdown
+    from .reproduce import BEYOND_CASES, PAPER_CASES, reproduce_alshaer2005, summary_markdown
 
     if paper != "alshaer2005":
         raise typer.BadParameter(f"unknown paper {paper!r}; valid: ['alshaer2005']", param_hint="PAPER")
@@ -114,21 +135,29 @@ def reproduce(
     try:
         with _progress("reproduce") as prog:
             tasks = {c.name: prog.add_task(c.name, total=1.0) for c in cases}
-            runs = reproduce_alshaer2005(out, quick=quick, beyond=beyond,
-                                         progress=lambda name, f: prog.update(tasks[name], completed=f))
+            runs = reproduce_alshaer2005(
+                out,
+                quick=quick,
+                beyond=beyond,
+                progress=lambda name, f: prog.update(tasks[name], completed=f),
+            )
     except (ValueError, SimulationError) as err:
         console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2)
+        raise typer.Exit(2) from None
     console.print(summary_markdown(runs))
     console.print(f"wrote {out}/report.html, summary.csv, <case>.csv and the figures")
 
 
 @app.command()
 def sweep(
-    spec: Path = typer.Argument(..., help="sweep file (TOML): [base], [grid]/[zip]/[sample], [output], [dask]"),
+    spec: Path = typer.Argument(
+        ..., help="sweep file (TOML): [base], [grid]/[zip]/[sample], [output], [dask]"
+    ),
     out: Path = typer.Option(Path("out/sweep"), help="output directory"),
     resume: bool = typer.Option(False, help="keep finished cases, run only the missing ones"),
-    scheduler: str = typer.Option(None, help="Dask scheduler address tcp://HOST:PORT (default: local processes)"),
+    scheduler: str = typer.Option(
+        None, help="Dask scheduler address tcp://HOST:PORT (default: local processes)"
+    ),
     workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
 ):
     """Run a parameter study; writes DIR/cases/*.json per case and DIR/sweep.nc."""
@@ -139,11 +168,17 @@ def sweep(
         n = len(sp.cases())
         with _progress("sweep") as prog:
             task = prog.add_task(f"{n} cases", total=n)
-            ds = run_sweep(sp, out, resume=resume, scheduler=scheduler, workers=workers,
-                           progress=lambda done, total: prog.update(task, completed=done))
+            ds = run_sweep(
+                sp,
+                out,
+                resume=resume,
+                scheduler=scheduler,
+                workers=workers,
+                progress=lambda done, total: prog.update(task, completed=done),
+            )
     except ValueError as err:
         console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2)
+        raise typer.Exit(2) from None
     failed = int((ds["error"] != "").sum())
     console.print(f"wrote {out}/sweep.nc ({n} cases, {failed} failed)")
 
@@ -165,8 +200,11 @@ def plot_sweep(
 
     ds = load(directory / "sweep.nc")
     if metric not in ds:
-        console.print(f"[red]error:[/red] metric {metric!r} not in the sweep; have {sorted(ds.data_vars)}", soft_wrap=True)
-        raise typer.Exit(2)
+        console.print(
+            f"[red]error:[/red] metric {metric!r} not in the sweep; have {sorted(ds.data_vars)}",
+            soft_wrap=True,
+        )
+        raise typer.Exit(2) from None
     fig, ax = plt.subplots(figsize=(6, 4.5))
     plots.sweep_metric(ds[metric], ax=ax)
     fig.tight_layout()
@@ -187,7 +225,7 @@ def animate_cmd(
     f = directory / "results.nc" if directory.is_dir() else directory
     if not f.exists():
         console.print(f"[red]error:[/red] {escape(str(f))} does not exist", soft_wrap=True)
-        raise typer.Exit(2)
+        raise typer.Exit(2) from None
     console.print(f"wrote {animate(f, out, frames=frames)}")
 
 
@@ -210,26 +248,38 @@ def plot_cmd(
     choices = ("moment", "orbit", "film", "contact", "energy")
     if what not in choices:
         console.print(f"[red]error:[/red] --what {what!r}: valid: {list(choices)}", soft_wrap=True)
-        raise typer.Exit(2)
+        raise typer.Exit(2) from None
     fig, ax = plt.subplots(figsize=(7, 4.5))
     try:
         plots.saved_run(ds, what, ax=ax)
     except ValueError as err:
         console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2)
+        raise typer.Exit(2) from None
     fig.tight_layout()
     target = out or directory / f"{what}.png"
     fig.savefig(target, dpi=120)
     console.print(f"wrote {target}")
 
 
-FILM_COLUMNS = ("xi", "xi_dot", "gamma", "gamma_dot", "omega_journal", "omega_bearing", "viscosity",
-                "length", "radius", "clearance")
+FILM_COLUMNS = (
+    "xi",
+    "xi_dot",
+    "gamma",
+    "gamma_dot",
+    "omega_journal",
+    "omega_bearing",
+    "viscosity",
+    "length",
+    "radius",
+    "clearance",
+)
 
 
 @app.command("film-force")
 def film_force_cmd(
-    states: Path = typer.Argument(..., help="CSV with columns " + ", ".join(FILM_COLUMNS) + " (SI, global rates)"),
+    states: Path = typer.Argument(
+        ..., help="CSV with columns " + ", ".join(FILM_COLUMNS) + " (SI, global rates)"
+    ),
     model: str = typer.Option("alshaer2005", help="film model name (see `jointdyn list`)"),
     out: Path = typer.Option(None, help="output CSV (default: stdout)"),
 ):
@@ -258,16 +308,20 @@ def film_force_cmd(
                 try:
                     vals.append(float(r[c]))
                 except ValueError:
-                    raise ValueError(f"{states}: row {i + 1}, column {c!r}: {r[c]!r} is not a number") from None
+                    raise ValueError(
+                        f"{states}: row {i + 1}, column {c!r}: {r[c]!r} is not a number"
+                    ) from None
             data[c] = np.array(vals)
         for c, v in data.items():
             bad = np.flatnonzero(~np.isfinite(v))
             if bad.size:
-                raise ValueError(f"{states}: row {bad[0] + 1}, column {c!r}: non-finite value {float(v[bad[0]])!r}")
+                raise ValueError(
+                    f"{states}: row {bad[0] + 1}, column {c!r}: non-finite value {float(v[bad[0]])!r}"
+                )
         F = film_forces(model, *(data[c] for c in FILM_COLUMNS))
     except (ValueError, OSError) as err:
         console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2)
+        raise typer.Exit(2) from None
     fh = open(out, "w", newline="") if out else sys.stdout
     w = csv.writer(fh)
     w.writerow(list(rows[0].keys()) + ["Fr", "Ft", "Fx", "Fy"])

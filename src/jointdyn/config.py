@@ -66,19 +66,31 @@ def _attribute_docs(obj) -> dict[str, str]:
     """Attribute docstrings (a string literal right after ``name: T = ...`` in a class body, or
     after ``self.name = ...`` in a function), walking the MRO so subclasses inherit them."""
     docs: dict[str, str] = {}
-    for klass in (reversed(obj.__mro__) if inspect.isclass(obj) else (obj,)):
+    for klass in reversed(obj.__mro__) if inspect.isclass(obj) else (obj,):
         try:
             tree = ast.parse(inspect.cleandoc("\n" + inspect.getsource(klass)))
         except (OSError, TypeError, SyntaxError):
             continue
         body = tree.body[0].body if tree.body and hasattr(tree.body[0], "body") else []
         for a, b in itertools.pairwise(body):
-            target = a.target if isinstance(a, ast.AnnAssign) else (
-                a.targets[0] if isinstance(a, ast.Assign) and len(a.targets) == 1 else None)
-            name = (target.id if isinstance(target, ast.Name) else
-                    target.attr if isinstance(target, ast.Attribute) else None)
-            if (name and isinstance(b, ast.Expr) and isinstance(b.value, ast.Constant)
-                    and isinstance(b.value.value, str)):
+            target = (
+                a.target
+                if isinstance(a, ast.AnnAssign)
+                else (a.targets[0] if isinstance(a, ast.Assign) and len(a.targets) == 1 else None)
+            )
+            name = (
+                target.id
+                if isinstance(target, ast.Name)
+                else target.attr
+                if isinstance(target, ast.Attribute)
+                else None
+            )
+            if (
+                name
+                and isinstance(b, ast.Expr)
+                and isinstance(b.value, ast.Constant)
+                and isinstance(b.value.value, str)
+            ):
                 docs[name] = " ".join(b.value.value.split())
     return docs
 
@@ -144,8 +156,13 @@ def _dataclass_schema(cls, title: str, skip=()) -> Schema:
     for f in dataclasses.fields(cls):
         if f.name in skip:
             continue
-        default = (f.default if f.default is not dataclasses.MISSING else
-                   f.default_factory() if f.default_factory is not dataclasses.MISSING else _REQUIRED)
+        default = (
+            f.default
+            if f.default is not dataclasses.MISSING
+            else f.default_factory()
+            if f.default_factory is not dataclasses.MISSING
+            else _REQUIRED
+        )
         keys.append(Key(f.name, hints[f.name], default, docs.get(f.name, "")))
     return _make_schema(title, keys, cls, " ".join((cls.__doc__ or "").split()))
 
@@ -155,16 +172,20 @@ def _model_schema() -> Schema:
     hints = typing.get_type_hints(Model.__init__)
     docs = _attribute_docs(Model.__init__)
     docs.setdefault("name", "free-text name of the mechanism (provenance, plot titles) [-]")
-    keys = [Key(p, hints[p], sig.parameters[p].default, docs.get(p, "")) for p in sig.parameters
-            if p != "self"]
+    keys = [
+        Key(p, hints[p], sig.parameters[p].default, docs.get(p, "")) for p in sig.parameters if p != "self"
+    ]
     return _make_schema("model", keys, Model, "The mechanism's name and gravity (``Model.__init__``).")
 
 
 def _ground_schema() -> Schema:
     points = _dataclass_schema(Body, "ground").keys["points"]
-    return _make_schema("ground", [dataclasses.replace(
-        points, doc="named fixed points in the world frame [m]")], None,
-        "Fixed points of the ground (the body named ``ground``) in world coordinates.")
+    return _make_schema(
+        "ground",
+        [dataclasses.replace(points, doc="named fixed points in the world frame [m]")],
+        None,
+        "Fixed points of the ground (the body named ``ground``) in world coordinates.",
+    )
 
 
 @cache
@@ -230,7 +251,9 @@ def _key_path(src: str) -> tuple | None:
 
 
 _HEADER = re.compile(r"^\[\s*([^\[\]]+?)\s*\]")
-_KEYLINE = re.compile(r"^((?:[A-Za-z0-9_\-]+|\"[^\"]*\"|'[^']*')(?:\s*\.\s*(?:[A-Za-z0-9_\-]+|\"[^\"]*\"|'[^']*'))*)\s*=")
+_KEYLINE = re.compile(
+    r"^((?:[A-Za-z0-9_\-]+|\"[^\"]*\"|'[^']*')(?:\s*\.\s*(?:[A-Za-z0-9_\-]+|\"[^\"]*\"|'[^']*'))*)\s*="
+)
 
 
 def _line_index(text: str) -> dict[tuple, int]:
@@ -305,8 +328,9 @@ def _validate(ctx: _Context, schema: Schema, table: dict, key: tuple, extra_ok=(
     """Unknown keys, missing keys, types and finiteness of one table; returns the values."""
     for k in table:
         if k not in schema.keys and k not in extra_ok:
-            raise ctx.error(key + (k,), f"unknown key in {schema.title}; "
-                            + _valid(list(extra_ok) + list(schema.keys)))
+            raise ctx.error(
+                key + (k,), f"unknown key in {schema.title}; " + _valid(list(extra_ok) + list(schema.keys))
+            )
     data = {k: _tuples(v) for k, v in table.items() if k not in extra_ok}
     try:
         obj = schema.validator.model_validate(data)
@@ -322,19 +346,22 @@ def _validate(ctx: _Context, schema: Schema, table: dict, key: tuple, extra_ok=(
             got = data
             for k in loc:
                 got = got[k]
-            msg = (f"wrong number of components (got {len(got)}: {list(got)!r}); {expected}")
+            msg = f"wrong number of components (got {len(got)}: {list(got)!r}); {expected}"
         elif e["type"] == "missing":
             msg = f"missing required key in {schema.title}; {expected}: {spec.doc if spec else ''}"
         elif e["type"] == "literal_error":
             msg = f"unknown name {e.get('input')!r}; valid names: " + ", ".join(NAME_FIELDS[field])
         else:
             got = e.get("input")
-            what = e["msg"].rstrip(".").replace("a valid tuple", "an array").replace("a valid dictionary", "a table")
+            what = (
+                e["msg"]
+                .rstrip(".")
+                .replace("a valid tuple", "an array")
+                .replace("a valid dictionary", "a table")
+            )
             msg = f"{what} (got {type(got).__name__} {got!r}); {expected}"
         raise ctx.error(key + loc, msg) from None
     return {k: getattr(obj, k) for k in schema.keys}
-
-
 
 
 def _field_error(ctx: _Context, key: tuple, err: Exception, names) -> ModelError:
@@ -350,14 +377,19 @@ def _law(ctx: _Context, value, key: tuple, family: str):
     registry = LAW_FIELDS[family]
     if value is None:
         return None
-    value = _check_table(ctx, key, value, "{ law = <name>, ... } with law one of " + ", ".join(sorted(registry)))
+    value = _check_table(
+        ctx, key, value, "{ law = <name>, ... } with law one of " + ", ".join(sorted(registry))
+    )
     if "law" not in value:
-        raise ctx.error(key + ("law",), f"missing required key 'law' ({family} law name); valid names: "
-                        + ", ".join(sorted(registry)))
+        raise ctx.error(
+            key + ("law",),
+            f"missing required key 'law' ({family} law name); valid names: " + ", ".join(sorted(registry)),
+        )
     name = value["law"]
     if not isinstance(name, str) or name not in registry:
-        raise ctx.error(key + ("law",), f"unknown {family} law {name!r}; valid names: "
-                        + ", ".join(sorted(registry)))
+        raise ctx.error(
+            key + ("law",), f"unknown {family} law {name!r}; valid names: " + ", ".join(sorted(registry))
+        )
     schema = schemas()[family][name]
     vals = _validate(ctx, schema, value, key, extra_ok=("law",))
     try:
@@ -375,10 +407,19 @@ def _item(ctx: _Context, family: str, name: str, table, model: Model):
         raise ctx.error(key + ("type",), "missing required key 'type'; valid types: " + ", ".join(registry))
     if not isinstance(typ, str) or typ not in registry:
         other = FORCE_ELEMENTS if family == "joints" else CONSTRAINTS
-        hint = (f" ({typ!r} is a{' force element' if family == 'joints' else ' joint'}: put it under "
-                f"[{'elements' if family == 'joints' else 'joints'}.{name}])") if typ in other else ""
-        raise ctx.error(key + ("type",), f"unknown {family[:-1] if family == 'joints' else 'element'} type "
-                        f"{typ!r}{hint}; valid types: " + ", ".join(registry))
+        hint = (
+            (
+                f" ({typ!r} is a{' force element' if family == 'joints' else ' joint'}: put it under "
+                f"[{'elements' if family == 'joints' else 'joints'}.{name}])"
+            )
+            if typ in other
+            else ""
+        )
+        raise ctx.error(
+            key + ("type",),
+            f"unknown {family[:-1] if family == 'joints' else 'element'} type "
+            f"{typ!r}{hint}; valid types: " + ", ".join(registry),
+        )
     schema = schemas()[family][typ]
     vals = _validate(ctx, schema, table, key, extra_ok=("type",))
     for f in LAW_FIELDS:
@@ -390,8 +431,9 @@ def _item(ctx: _Context, family: str, name: str, table, model: Model):
         if b is not None and b not in bodies:
             raise ctx.error(key + (f"body_{side}",), f"unknown body {b!r}; bodies are " + ", ".join(bodies))
     if vals.get("body_i") is not None and vals.get("body_i") == vals.get("body_j"):
-        raise ctx.error(key + ("body_j",), f"joins body {vals['body_i']!r} to itself "
-                        "(body_i and body_j must differ)")
+        raise ctx.error(
+            key + ("body_j",), f"joins body {vals['body_i']!r} to itself (body_i and body_j must differ)"
+        )
     for side in ("i", "j"):
         p = vals.get(f"point_{side}")
         if p is not None:
@@ -399,8 +441,10 @@ def _item(ctx: _Context, family: str, name: str, table, model: Model):
             pts = model.ground_points if b == GROUND else model.bodies[b].points
             if p not in pts:
                 where = "[ground.points]" if b == GROUND else f"bodies.{b}.points"
-                raise ctx.error(key + (f"point_{side}",), f"body {b!r} has no point {p!r}; points in "
-                                f"{where}: " + (", ".join(pts) or "(none)"))
+                raise ctx.error(
+                    key + (f"point_{side}",),
+                    f"body {b!r} has no point {p!r}; points in {where}: " + (", ".join(pts) or "(none)"),
+                )
     try:
         item = registry[typ](**vals)
         if hasattr(item, "validate"):
@@ -410,8 +454,9 @@ def _item(ctx: _Context, family: str, name: str, table, model: Model):
     return item
 
 
-def build(doc: dict, source: str = "<model>", text: str = "", overridden: dict | None = None,
-          assemble: bool = True) -> tuple[Model, SimConfig]:
+def build(
+    doc: dict, source: str = "<model>", text: str = "", overridden: dict | None = None, assemble: bool = True
+) -> tuple[Model, SimConfig]:
     """Validate a parsed model document and build (Model, SimConfig).
 
     ``source``/``text`` only serve error messages (file name and line numbers). With
@@ -419,22 +464,33 @@ def build(doc: dict, source: str = "<model>", text: str = "", overridden: dict |
     """
     ctx = _Context(source, text, overridden)
     if not doc:
-        raise ctx.error((), "the file is empty; a model file needs at least [bodies.<name>] and "
-                        "[simulation] (see docs/model_files.md)")
+        raise ctx.error(
+            (),
+            "the file is empty; a model file needs at least [bodies.<name>] and "
+            "[simulation] (see docs/model_files.md)",
+        )
     for k in doc:
         if k not in TOP_LEVEL:
             raise ctx.error((k,), "unknown top-level table; valid tables: " + ", ".join(TOP_LEVEL))
     for k in ("bodies", "simulation"):
         if k not in doc:
-            raise ctx.error((k,), f"missing required table [{k}]; " + (
-                "add at least one [bodies.<name>] with mass and inertia" if k == "bodies" else
-                "add [simulation] with at least t_end [s]"))
+            raise ctx.error(
+                (k,),
+                f"missing required table [{k}]; "
+                + (
+                    "add at least one [bodies.<name>] with mass and inertia"
+                    if k == "bodies"
+                    else "add [simulation] with at least t_end [s]"
+                ),
+            )
     sch = schemas()
-    mvals = _validate(ctx, sch["model"], _check_table(ctx, ("model",), doc.get("model", {}), "name, gravity"),
-                      ("model",))
+    mvals = _validate(
+        ctx, sch["model"], _check_table(ctx, ("model",), doc.get("model", {}), "name, gravity"), ("model",)
+    )
     model = Model(**mvals)
-    ground = _validate(ctx, sch["ground"], _check_table(ctx, ("ground",), doc.get("ground", {}), "points"),
-                       ("ground",))
+    ground = _validate(
+        ctx, sch["ground"], _check_table(ctx, ("ground",), doc.get("ground", {}), "points"), ("ground",)
+    )
     for p, xy in ground["points"].items():
         model.add_ground_point(p, xy)
     bodies = _check_table(ctx, ("bodies",), doc["bodies"], "one sub-table per body")
@@ -443,8 +499,9 @@ def build(doc: dict, source: str = "<model>", text: str = "", overridden: dict |
     for name, table in bodies.items():
         key = ("bodies", name)
         if name == GROUND:
-            raise ctx.error(key, "the name 'ground' is reserved for the fixed frame; put its points "
-                            "in [ground.points]")
+            raise ctx.error(
+                key, "the name 'ground' is reserved for the fixed frame; put its points in [ground.points]"
+            )
         vals = _validate(ctx, sch["body"], _check_table(ctx, key, table, "mass, inertia, ..."), key)
         try:
             model.add_body(name, **vals)
@@ -454,12 +511,19 @@ def build(doc: dict, source: str = "<model>", text: str = "", overridden: dict |
     for family in ("joints", "elements"):
         for name, table in _check_table(ctx, (family,), doc.get(family, {}), "one sub-table each").items():
             if name in seen:
-                raise ctx.error((family, name), f"duplicate name: {seen[name]}.{name} already exists "
-                                "(joint and element names share one namespace)")
+                raise ctx.error(
+                    (family, name),
+                    f"duplicate name: {seen[name]}.{name} already exists "
+                    "(joint and element names share one namespace)",
+                )
             seen[name] = family
             model.add(name, _item(ctx, family, name, table, model))
-    svals = _validate(ctx, sch["simulation"], _check_table(ctx, ("simulation",), doc["simulation"], "t_end, ..."),
-                      ("simulation",))
+    svals = _validate(
+        ctx,
+        sch["simulation"],
+        _check_table(ctx, ("simulation",), doc["simulation"], "t_end, ..."),
+        ("simulation",),
+    )
     try:
         config = SimConfig(**svals)
     except ValueError as err:
@@ -535,20 +599,24 @@ def apply_overrides(doc: dict, overrides=()) -> dict:
         try:
             value = _parse_value(rhs.strip())
         except tomllib.TOMLDecodeError as err:
-            raise ModelError(f"override {ov!r}: the value {rhs.strip()!r} is not a TOML value ({err})") from None
+            raise ModelError(
+                f"override {ov!r}: the value {rhs.strip()!r} is not a TOML value ({err})"
+            ) from None
         node = doc
         for i, k in enumerate(path):
             valid = _valid_keys(doc, path[:i])
             if valid is not None and k not in valid:
                 at = ".".join(path[:i]) or "the top level"
-                raise ModelError(f"override {ov!r}: unknown key {k!r} at {at}; "
-                                 + (_valid(valid) if valid else "nothing can be set there"))
+                raise ModelError(
+                    f"override {ov!r}: unknown key {k!r} at {at}; "
+                    + (_valid(valid) if valid else "nothing can be set there")
+                )
             if i == len(path) - 1:
                 node[k] = value
             else:
                 nxt = node.setdefault(k, {}) if k not in node else node[k]
                 if not isinstance(nxt, dict):
-                    raise ModelError(f"override {ov!r}: {'.'.join(path[:i + 1])} is a value, not a table")
+                    raise ModelError(f"override {ov!r}: {'.'.join(path[: i + 1])} is a value, not a table")
                 node = nxt
     return doc
 
@@ -577,7 +645,7 @@ def _read(path) -> tuple[dict, str]:
             p = _key_path(h.group(1)) if h else None
             if p is None and k:
                 table = ()
-                for prev in text.splitlines()[:line - 1]:
+                for prev in text.splitlines()[: line - 1]:
                     hh = _HEADER.match(prev.strip())
                     if hh and _key_path(hh.group(1)) is not None:
                         table = _key_path(hh.group(1))
@@ -654,16 +722,23 @@ def dumps(model: Model, config: SimConfig, header: str = "") -> str:
     if model.ground_points:
         out += _table("ground.points", model.ground_points.items())
     for name, b in model.bodies.items():
-        out += _table(f"bodies.{_key(name)}", [(f.name, getattr(b, f.name))
-                                               for f in dataclasses.fields(b) if f.name != "name"])
-    types = {cls: (fam, n) for fam, reg in (("joints", CONSTRAINTS), ("elements", FORCE_ELEMENTS))
-             for n, cls in reg.items()}
+        out += _table(
+            f"bodies.{_key(name)}",
+            [(f.name, getattr(b, f.name)) for f in dataclasses.fields(b) if f.name != "name"],
+        )
+    types = {
+        cls: (fam, n)
+        for fam, reg in (("joints", CONSTRAINTS), ("elements", FORCE_ELEMENTS))
+        for n, cls in reg.items()
+    }
     for family in ("joints", "elements"):
         for name, item in model.items.items():
             fam, typ = types[type(item)]
             if fam == family:
-                out += _table(f"{family}.{_key(name)}", [("type", typ)] + [
-                    (f.name, getattr(item, f.name)) for f in dataclasses.fields(item)])
+                out += _table(
+                    f"{family}.{_key(name)}",
+                    [("type", typ)] + [(f.name, getattr(item, f.name)) for f in dataclasses.fields(item)],
+                )
     out += _table("simulation", [(f.name, getattr(config, f.name)) for f in dataclasses.fields(config)])
     return "\n".join(out)
 
@@ -706,8 +781,12 @@ def run_model_file(path, out_dir, overrides=()):
     model, config = load_model(path, overrides)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    save_model(model, config, out / "model.toml",
-               header=f"resolved from {path}" + (f" with {list(overrides)}" if overrides else ""))
+    save_model(
+        model,
+        config,
+        out / "model.toml",
+        header=f"resolved from {path}" + (f" with {list(overrides)}" if overrides else ""),
+    )
     system = model.compile()
     try:
         res = simulate(system, config)

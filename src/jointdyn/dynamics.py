@@ -94,13 +94,13 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
     status = eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
     if m > 0:
         o = n
-        Phi = ws[o:o + m]
-        Phit = ws[o + m:o + 2 * m]
-        gam = ws[o + 2 * m:o + 3 * m]
+        Phi = ws[o : o + m]
+        Phit = ws[o + m : o + 2 * m]
+        gam = ws[o + 2 * m : o + 3 * m]
         o += 3 * m
-        J = ws[o:o + m * n].reshape((m, n))
+        J = ws[o : o + m * n].reshape((m, n))
         o += m * n
-        S = ws[o:o + m * m].reshape((m, m))
+        S = ws[o : o + m * m].reshape((m, m))
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
         a = stab[0]
         if a > 0.0:
@@ -138,9 +138,9 @@ def rhs(t, y, mem, P, ydot):
     m = P[7]
     ws = P[9]
     o = n + 3 * m + m * n + m * m
-    lam = ws[o:o + max(m, 1)]
+    lam = ws[o : o + max(m, 1)]
     o += max(m, 1)
-    eout = ws[o:o + P[4].shape[0] * NOUT].reshape((P[4].shape[0], NOUT))
+    eout = ws[o : o + P[4].shape[0] * NOUT].reshape((P[4].shape[0], NOUT))
     qdd = ydot[n:]
     ydot[:n] = y[n:]
     return accelerations(t, y[:n], y[n:], mem, P, qdd, lam, eout)
@@ -162,7 +162,7 @@ def project(t, y, P, tol):
     Phit = np.empty(m)
     gam = np.empty(m)
     res = 0.0
-    for it in range(6):
+    for _ in range(6):
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
         res = 0.0
         for r in range(m):

@@ -11,7 +11,6 @@ points are given in world coordinates.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field, fields
 
 import numpy as np
@@ -78,8 +77,16 @@ class Model:
         self.items: dict[str, object] = {}
 
     # -- building -------------------------------------------------------------------------
-    def add_body(self, name: str, mass: float, inertia: float, position=(0.0, 0.0), angle=0.0,
-                 velocity=(0.0, 0.0, 0.0), points=None) -> Body:
+    def add_body(
+        self,
+        name: str,
+        mass: float,
+        inertia: float,
+        position=(0.0, 0.0),
+        angle=0.0,
+        velocity=(0.0, 0.0, 0.0),
+        points=None,
+    ) -> Body:
         if name == GROUND or name in self.bodies:
             raise ModelError(f"body name {name!r} is {'reserved' if name == GROUND else 'already used'}")
         body = Body(name, mass, inertia, tuple(position), angle, tuple(velocity), dict(points or {}))
@@ -97,8 +104,10 @@ class Model:
             raise ModelError(f"element name {name!r} is already used")
         kinds = tuple(CONSTRAINTS.values()) + tuple(fe.FORCE_ELEMENTS.values())
         if not isinstance(item, kinds):
-            raise ModelError(f"{name!r}: {type(item).__name__} is not a known constraint or force "
-                             f"element; valid: {sorted(CONSTRAINTS) + sorted(fe.FORCE_ELEMENTS)}")
+            raise ModelError(
+                f"{name!r}: {type(item).__name__} is not a known constraint or force "
+                f"element; valid: {sorted(CONSTRAINTS) + sorted(fe.FORCE_ELEMENTS)}"
+            )
         self.items[name] = item
 
     # -- lookup ---------------------------------------------------------------------------
@@ -145,7 +154,7 @@ class Model:
         constraints = [(n, c) for n, c in self.items.items() if type(c) in CONSTRAINTS.values()]
         elements = [(n, e) for n, e in self.items.items() if type(e) in fe.FORCE_ELEMENTS.values()]
         for n, c in constraints + elements:
-            bi, bj = getattr(c, "body_i"), getattr(c, "body_j")
+            bi, bj = c.body_i, c.body_j
             index = self._body_index(f"element {n!r}")
             index(bi), index(bj)
             if bi == bj:
@@ -174,26 +183,42 @@ class Model:
         q = np.empty(3 * nb)
         qd = np.empty(3 * nb)
         for k, b in enumerate(self.bodies.values()):
-            minv[3 * k: 3 * k + 3] = (1.0 / b.mass, 1.0 / b.mass, 1.0 / b.inertia)
-            q0f[3 * k: 3 * k + 2] = (b.mass * self.gravity[0], b.mass * self.gravity[1])
-            q[3 * k: 3 * k + 3] = (b.position[0], b.position[1], b.angle)
-            qd[3 * k: 3 * k + 3] = b.velocity
+            minv[3 * k : 3 * k + 3] = (1.0 / b.mass, 1.0 / b.mass, 1.0 / b.inertia)
+            q0f[3 * k : 3 * k + 2] = (b.mass * self.gravity[0], b.mass * self.gravity[1])
+            q[3 * k : 3 * k + 3] = (b.position[0], b.position[1], b.angle)
+            qd[3 * k : 3 * k + 3] = b.velocity
 
         # assembly constraints: the ideal ones plus imperfect joints treated as revolute
-        asm = [c for _, c in constraints] + [Revolute(e.body_i, e.point_i, e.body_j, e.point_j)
-                                             for _, e in elements
-                                             if centre_imperfect and getattr(e, "centred", False)]
+        asm = [c for _, c in constraints] + [
+            Revolute(e.body_i, e.point_i, e.body_j, e.point_j)
+            for _, e in elements
+            if centre_imperfect and getattr(e, "centred", False)
+        ]
         acint, acreal, am = constraint_table(asm, index, point_of, self._angle_of)
         if am > 3 * nb:
             raise ModelError(f"over-constrained: {am} constraint equations for {3 * nb} coordinates")
         y0 = np.concatenate([q, qd])
         _assemble(y0, acint, acreal, am, minv, position_tol, max_iter)
         return System(
-            name=self.name, body_names=tuple(self.bodies), constraint_names=tuple(n for n, _ in constraints),
-            constraint_rows=tuple(rows), element_names=tuple(n for n, _ in elements),
-            constraints=tuple(c for _, c in constraints), elements=tuple(e for _, e in elements),
-            minv=minv, q0_force=q0f, cint=cint, creal=creal, fint=fint, freal=freal, tables=tables,
-            n_rows=m, y0=y0, mem0=mem0, gravity=self.gravity, model_dict=self.to_dict(),
+            name=self.name,
+            body_names=tuple(self.bodies),
+            constraint_names=tuple(n for n, _ in constraints),
+            constraint_rows=tuple(rows),
+            element_names=tuple(n for n, _ in elements),
+            constraints=tuple(c for _, c in constraints),
+            elements=tuple(e for _, e in elements),
+            minv=minv,
+            q0_force=q0f,
+            cint=cint,
+            creal=creal,
+            fint=fint,
+            freal=freal,
+            tables=tables,
+            n_rows=m,
+            y0=y0,
+            mem0=mem0,
+            gravity=self.gravity,
+            model_dict=self.to_dict(),
         )
 
     def to_dict(self) -> dict:
@@ -214,9 +239,12 @@ class Model:
             return d
 
         return {
-            "name": self.name, "gravity": list(self.gravity),
-            "bodies": {n: {f.name: getattr(b, f.name) for f in fields(b) if f.name != "name"}
-                       for n, b in self.bodies.items()},
+            "name": self.name,
+            "gravity": list(self.gravity),
+            "bodies": {
+                n: {f.name: getattr(b, f.name) for f in fields(b) if f.name != "name"}
+                for n, b in self.bodies.items()
+            },
             "ground_points": dict(self.ground_points),
             "items": {n: item(x) for n, x in self.items.items()},
         }
@@ -240,15 +268,21 @@ def _assemble(y, cint, creal, m, minv, tol, max_iter):
         try:
             q -= W @ J.T @ np.linalg.solve(S, Phi)
         except np.linalg.LinAlgError:
-            raise ModelError("position analysis failed: the constraint Jacobian is singular "
-                             "(redundant constraints or a locked configuration)") from None
+            raise ModelError(
+                "position analysis failed: the constraint Jacobian is singular "
+                "(redundant constraints or a locked configuration)"
+            ) from None
     if not res <= tol:
-        raise ModelError(f"the mechanism cannot be assembled: position analysis did not converge "
-                         f"in {max_iter} iterations (max |Φ| = {res:.3g} [m or rad]); check lengths "
-                         f"and the initial guesses of body positions/angles")
+        raise ModelError(
+            f"the mechanism cannot be assembled: position analysis did not converge "
+            f"in {max_iter} iterations (max |Φ| = {res:.3g} [m or rad]); check lengths "
+            f"and the initial guesses of body positions/angles"
+        )
     eval_constraints(0.0, q, qd, cint, creal, Phi, J, Phit, gam)
     S = J @ W @ J.T
     if np.linalg.matrix_rank(S) < m:
-        raise ModelError("the constraint Jacobian is rank deficient at the assembled position "
-                         "(redundant constraints or a singular configuration)")
+        raise ModelError(
+            "the constraint Jacobian is rank deficient at the assembled position "
+            "(redundant constraints or a singular configuration)"
+        )
     qd -= W @ J.T @ np.linalg.solve(S, J @ qd + Phit)

@@ -46,9 +46,22 @@ def series_vs_angle(angle, values, ylabel, ax=None, label=None, **kw):
     return ax
 
 
-UNITS = {"clearance": "m", "viscosity": "Pa·s", "speed": "rad/s", "length": "m", "gravity": "m/s²",
-         "restitution": "-", "peak_moment": "N·m", "min_moment": "N·m", "rms_moment": "N·m", "max_xi": "-",
-         "min_h_min": "m", "impacts": "-", "energy_dissipated": "J", "wall_time_s": "s"}
+UNITS = {
+    "clearance": "m",
+    "viscosity": "Pa·s",
+    "speed": "rad/s",
+    "length": "m",
+    "gravity": "m/s²",
+    "restitution": "-",
+    "peak_moment": "N·m",
+    "min_moment": "N·m",
+    "rms_moment": "N·m",
+    "max_xi": "-",
+    "min_h_min": "m",
+    "impacts": "-",
+    "energy_dissipated": "J",
+    "wall_time_s": "s",
+}
 
 
 def _label(name):
@@ -68,8 +81,15 @@ def sweep_metric(da, ax=None):
         ax.set_yticks(np.arange(len(Y)) + 0.5, [f"{v:.3g}" for v in Y])
         for i in range(len(Y)):
             for j in range(len(X)):
-                ax.text(j + 0.5, i + 0.5, f"{da.values[i, j]:.4g}", ha="center", va="center", fontsize=8,
-                        color="w")
+                ax.text(
+                    j + 0.5,
+                    i + 0.5,
+                    f"{da.values[i, j]:.4g}",
+                    ha="center",
+                    va="center",
+                    fontsize=8,
+                    color="w",
+                )
         ax.set_xlabel(_label(x))
         ax.set_ylabel(_label(y))
         ax.figure.colorbar(m, ax=ax, label=_label(da.name))
@@ -92,8 +112,11 @@ def saved_run(ds, what: str, ax=None):
     t = ds["time"].values
     journals = [k for k, v in model["items"].items() if v["type"] in ("journal_bearing", "clearance_joint")]
     if what == "moment":
-        drivers = [r for r in rows if any(r.startswith(f"{n}[") for n, v in model["items"].items()
-                                          if v["type"] == "angle_driver")]
+        drivers = [
+            r
+            for r in rows
+            if any(r.startswith(f"{n}[") for n, v in model["items"].items() if v["type"] == "angle_driver")
+        ]
         if not drivers:
             raise ValueError("the run has no angle driver: no driving moment to plot")
         for r in drivers:

@@ -48,18 +48,43 @@ BEYOND_CASES = (
     Case("alshaer2005_mu1.0", "alshaer2005", "π-film, μ = 1.0 Pa·s", {"viscosity": 1.0}),
 )
 
-SUMMARY_COLUMNS = ("case", "peak_moment", "min_moment", "rms_moment", "max_xi", "impacts",
-                   "wall_time_s", "peak_moment_all", "min_moment_all", "rms_moment_all",
-                   "rhs_evaluations", "accepted_steps", "rejected_steps", "solver", "rtol")
+SUMMARY_COLUMNS = (
+    "case",
+    "peak_moment",
+    "min_moment",
+    "rms_moment",
+    "max_xi",
+    "impacts",
+    "wall_time_s",
+    "peak_moment_all",
+    "min_moment_all",
+    "rms_moment_all",
+    "rhs_evaluations",
+    "accepted_steps",
+    "rejected_steps",
+    "solver",
+    "rtol",
+)
 
 
 def run_case(case: Case, revs: float, progress=None):
     """Simulate one case; returns (results, columns, summary row)."""
     t0 = time.perf_counter()
-    res, cols, summ = run_slider_crank(case.joint, revs, progress=progress, model_kw=case.model_kw,
-                                       solver=case.solver, rtol=case.rtol, atol=case.atol)
-    summ = {"case": case.name, **summ, "wall_time_s": time.perf_counter() - t0,
-            "max_xi": summ.get("max_xi", float("nan"))}
+    res, cols, summ = run_slider_crank(
+        case.joint,
+        revs,
+        progress=progress,
+        model_kw=case.model_kw,
+        solver=case.solver,
+        rtol=case.rtol,
+        atol=case.atol,
+    )
+    summ = {
+        "case": case.name,
+        **summ,
+        "wall_time_s": time.perf_counter() - t0,
+        "max_xi": summ.get("max_xi", float("nan")),
+    }
     k = res.system.element_names.index("piston_pin") if "piston_pin" in res.system.element_names else None
     summ["impacts"] = int(res.mem[-1, k, 2]) if k is not None else 0
     return res, cols, summ
@@ -118,8 +143,9 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         fig, ax = plt.subplots(figsize=(8, 4))
         for n in lub:
             cols = runs[n][1]
-            plots.series_vs_angle(cols["crank_angle"], cols["h_min"] * 1e6, "minimum film thickness [µm]",
-                                  ax=ax, label=n)
+            plots.series_vs_angle(
+                cols["crank_angle"], cols["h_min"] * 1e6, "minimum film thickness [µm]", ax=ax, label=n
+            )
         ax.set_yscale("log")
         ax.legend(fontsize=8)
         fig.tight_layout()
@@ -130,8 +156,9 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         fig, ax = plt.subplots(figsize=(8, 4))
         for n in imp:
             cols = runs[n][1]
-            plots.series_vs_angle(cols["crank_angle"], cols["joint_force"], "joint force on the journal [N]",
-                                  ax=ax, label=n)
+            plots.series_vs_angle(
+                cols["crank_angle"], cols["joint_force"], "joint force on the journal [N]", ax=ax, label=n
+            )
         ax.set_yscale("symlog", linthresh=10.0)
         ax.legend(fontsize=8)
         fig.tight_layout()
@@ -144,7 +171,7 @@ def write_csvs(out: Path, runs: dict) -> None:
     with open(out / "summary.csv", "w", newline="") as f:
         w = csv.writer(f)
         w.writerow(SUMMARY_COLUMNS)
-        for n, (_, _, summ, _) in runs.items():
+        for _, _, summ, _ in runs.values():
             w.writerow([_fmt(summ.get(c, "")) for c in SUMMARY_COLUMNS])
     for n, (_, cols, _, _) in runs.items():
         names = ["t", "crank_angle", "crank_moment", "ex_over_c", "ey_over_c", "h_min", "joint_force"]
@@ -168,9 +195,18 @@ def summary_markdown(runs: dict) -> str:
     cols = ("case", "peak_moment", "min_moment", "rms_moment", "max_xi", "impacts", "wall_time_s")
     lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
     for _, (_, _, s, _) in runs.items():
-        lines.append("| " + " | ".join(
-            (f"{s[c]:.4g}" if isinstance(s.get(c), float) and not math.isnan(s[c]) else
-             ("–" if isinstance(s.get(c), float) else str(s.get(c, "")))) for c in cols) + " |")
+        lines.append(
+            "| "
+            + " | ".join(
+                (
+                    f"{s[c]:.4g}"
+                    if isinstance(s.get(c), float) and not math.isnan(s[c])
+                    else ("–" if isinstance(s.get(c), float) else str(s.get(c, "")))
+                )
+                for c in cols
+            )
+            + " |"
+        )
     return "\n".join(lines)
 
 
@@ -180,31 +216,41 @@ def discussion(runs: dict) -> list[str]:
     out = []
     if "perfect" in s:
         p = s["perfect"]
-        out.append(f"Perfect joint: peak crank moment {p['peak_moment']:.2f} N·m, minimum "
-                   f"{p['min_moment']:.2f} N·m — the paper's \"order of 150 N·m\"; the benchmark's "
-                   f"analytic inverse dynamics gives ±138.5 N·m (tests/test_core.py checks 1e-6).")
+        out.append(
+            f"Perfect joint: peak crank moment {p['peak_moment']:.2f} N·m, minimum "
+            f"{p['min_moment']:.2f} N·m — the paper's \"order of 150 N·m\"; the benchmark's "
+            f"analytic inverse dynamics gives ±138.5 N·m (tests/test_core.py checks 1e-6)."
+        )
     if "dry" in s and "perfect" in s:
         r = s["dry"]["peak_moment_all"] / s["perfect"]["peak_moment"]
-        out.append(f"Dry clearance joint: {s['dry']['impacts']} impacts in the run; peak moment "
-                   f"{s['dry']['peak_moment_all']:.0f} N·m = {r:.1f}× the perfect peak. The paper says "
-                   f"\"two orders of magnitude\"; peaks of impacts do not converge with tolerance "
-                   f"(the dry case is chaotic, spec/benchmark.md), so compare RMS "
-                   f"({s['dry']['rms_moment']:.1f} vs {s['perfect']['rms_moment']:.1f} N·m).")
+        out.append(
+            f"Dry clearance joint: {s['dry']['impacts']} impacts in the run; peak moment "
+            f"{s['dry']['peak_moment_all']:.0f} N·m = {r:.1f}× the perfect peak. The paper says "
+            f'"two orders of magnitude"; peaks of impacts do not converge with tolerance '
+            f"(the dry case is chaotic, spec/benchmark.md), so compare RMS "
+            f"({s['dry']['rms_moment']:.1f} vs {s['perfect']['rms_moment']:.1f} N·m)."
+        )
     for n in ("ott", "alshaer2005"):
         if n in s and "perfect" in s:
-            out.append(f"{n}: peak {s[n]['peak_moment']:.1f} N·m over the last revolution "
-                       f"({s[n]['peak_moment'] / s['perfect']['peak_moment']:.2f}× perfect), max ξ = "
-                       f"{s[n]['max_xi']:.3f}.")
+            out.append(
+                f"{n}: peak {s[n]['peak_moment']:.1f} N·m over the last revolution "
+                f"({s[n]['peak_moment'] / s['perfect']['peak_moment']:.2f}× perfect), max ξ = "
+                f"{s[n]['max_xi']:.3f}."
+            )
     if "ott" in s and "alshaer2005" in s:
         a, b = runs["ott"][1], runs["alshaer2005"][1]
         d = np.hypot(a["ex_over_c"] - b["ex_over_c"], a["ey_over_c"] - b["ey_over_c"]).max()
-        out.append(f"Journal paths of Ott and the π-film differ by up to {d:.3f}·c: Ott's model is a "
-                   f"rational approximation of the same π-film (spec §4.3), 5–25 % off at moderate ξ and "
-                   f"far off for separating motion near the wall, which is where the path differs.")
-    out.append("Both lubricated models here use the corrected film speed Ω = ω_J + ω_B − 2γ̇ (the "
-               "paper prints ω − γ̇, typo T1 in spec §3.4) and the corrected eqs 6–9/1–5; with the "
-               "bushing in the rod eye, ω_B = φ̇_rod enters Ω (spec §11.4), which the paper may not "
-               "have done — its published curves need not match a correct implementation exactly.")
+        out.append(
+            f"Journal paths of Ott and the π-film differ by up to {d:.3f}·c: Ott's model is a "
+            f"rational approximation of the same π-film (spec §4.3), 5–25 % off at moderate ξ and "
+            f"far off for separating motion near the wall, which is where the path differs."
+        )
+    out.append(
+        "Both lubricated models here use the corrected film speed Ω = ω_J + ω_B − 2γ̇ (the "
+        "paper prints ω − γ̇, typo T1 in spec §3.4) and the corrected eqs 6–9/1–5; with the "
+        "bushing in the rod eye, ω_B = φ̇_rod enters Ω (spec §11.4), which the paper may not "
+        "have done — its published curves need not match a correct implementation exactly."
+    )
     return out
 
 
@@ -213,17 +259,24 @@ def report_html(runs: dict, figs: dict, revs: float, params: dict) -> str:
         if name not in figs:
             return ""
         b64 = base64.b64encode(figs[name]).decode()
-        return f'<figure><img alt="{name}" src="data:image/png;base64,{b64}" width="{width}"><figcaption>{name}</figcaption></figure>'
+        img_tag = f'<img alt="{name}" src="data:image/png;base64,{b64}" width="{width}">'
+        return f"<figure>{img_tag}<figcaption>{name}</figcaption></figure>"
 
-    rows = "".join("<tr>" + "".join(f"<td>{html.escape(_fmt(s.get(c, '')))}</td>" for c in SUMMARY_COLUMNS) + "</tr>"
-                   for _, (_, _, s, _) in runs.items())
+    rows = "".join(
+        "<tr>" + "".join(f"<td>{html.escape(_fmt(s.get(c, '')))}</td>" for c in SUMMARY_COLUMNS) + "</tr>"
+        for _, (_, _, s, _) in runs.items()
+    )
     head = "".join(f"<th>{c}</th>" for c in SUMMARY_COLUMNS)
-    par = "".join(f"<tr><td>{html.escape(k)}</td><td>{html.escape(str(v))}</td></tr>" for k, v in params.items())
+    par = "".join(
+        f"<tr><td>{html.escape(k)}</td><td>{html.escape(str(v))}</td></tr>" for k, v in params.items()
+    )
     disc = "".join(f"<li>{html.escape(x)}</li>" for x in discussion(runs))
     paper = [n for n in ("perfect", "dry", "ott", "alshaer2005") if n in runs]
     beyond = [n for n in runs if n not in paper]
-    body = f"""<!DOCTYPE html><html><head><meta charset="utf-8"><title>jointdyn — Alshaer et al. (2005) reproduction</title>
-<style>body{{font-family:sans-serif;max-width:1100px;margin:auto}} table{{border-collapse:collapse;font-size:12px}}
+    title = "jointdyn — Alshaer et al. (2005) reproduction"
+    body = f"""<!DOCTYPE html><html><head><meta charset="utf-8"><title>{title}</title>
+<style>body{{font-family:sans-serif;max-width:1100px;margin:auto}}
+table{{border-collapse:collapse;font-size:12px}}
 td,th{{border:1px solid #bbb;padding:2px 6px}} figure{{display:inline-block;margin:6px}}</style></head><body>
 <h1>Slider-crank with a lubricated piston pin — reproduction of Alshaer et al., J. Mech. Des. 127 (2005)</h1>
 <p>{revs:g} crank revolutions at 5000 rpm; moments over the last revolution (columns *_all: whole run).
@@ -231,21 +284,22 @@ Film models: Ott (corrected, docs/theory.md T20–T39) and the paper's π-film i
 of spec §3.3; dry contact Lankarani–Nikravesh (T50–T69).</p>
 <h2>Summary</h2><table><tr>{head}</tr>{rows}</table>
 <h2>Paper figures</h2>
-{''.join(img(f"moment_{n}.png") for n in paper)}
+{"".join(img(f"moment_{n}.png") for n in paper)}
 {img("moment_overlay.png", 800)}
-{''.join(img(f"orbit_{n}.png", 360) for n in paper if f"orbit_{n}.png" in figs)}
+{"".join(img(f"orbit_{n}.png", 360) for n in paper if f"orbit_{n}.png" in figs)}
 {img("film_thickness.png", 800)}{img("joint_force.png", 800)}
 <h2>Comparison with the paper's statements</h2><ul>{disc}</ul>
 <h2>Beyond the paper</h2>
-<p>Cases: {html.escape(', '.join(beyond) or 'none in this run')}.</p>
-{''.join(img(f"orbit_{n}.png", 360) for n in beyond if f"orbit_{n}.png" in figs)}
+<p>Cases: {html.escape(", ".join(beyond) or "none in this run")}.</p>
+{"".join(img(f"orbit_{n}.png", 360) for n in beyond if f"orbit_{n}.png" in figs)}
 <h2>Parameters</h2><table>{par}</table>
 </body></html>"""
     return body
 
 
-def reproduce_alshaer2005(out: Path, quick: bool = False, beyond: bool = True, progress=None,
-                          revs: float | None = None) -> dict:
+def reproduce_alshaer2005(
+    out: Path, quick: bool = False, beyond: bool = True, progress=None, revs: float | None = None
+) -> dict:
     """Run all cases, write the files; returns {case: (results, columns, summary, Case)}."""
     from .models import slider_crank as sc
 
@@ -262,14 +316,20 @@ def reproduce_alshaer2005(out: Path, quick: bool = False, beyond: bool = True, p
     figs = figures(runs, revs)
     for name, png in figs.items():
         (out / name).write_bytes(png)
-    params = {"crank": f"{sc.CRANK_LENGTH} m, {sc.CRANK_MASS} kg, {sc.CRANK_INERTIA} kg·m²",
-              "rod": f"{sc.ROD_LENGTH} m, {sc.ROD_MASS} kg, {sc.ROD_INERTIA} kg·m²",
-              "slider": f"{sc.SLIDER_MASS} kg", "crank speed": "5000 rpm (CCW)", "gravity": "9.81 m/s² (−y)",
-              "journal radius": f"{sc.JOURNAL_RADIUS} m", "clearance": "0.5 mm (0.05 mm beyond the paper)",
-              "bearing length": f"{sc.BEARING_LENGTH} m", "viscosity": f"{sc.VISCOSITY} Pa·s",
-              "dry contact": "Lankarani–Nikravesh, n = 1.5, c_r = 0.9, K from E = 207 GPa, ν = 0.3",
-              "bearing side": "bushing in the rod eye (body i), journal on the slider (body j)",
-              "initial state": "ideal mechanism at crank angle 0, journal centred (e = 0, ė = 0)"}
+    params = {
+        "crank": f"{sc.CRANK_LENGTH} m, {sc.CRANK_MASS} kg, {sc.CRANK_INERTIA} kg·m²",
+        "rod": f"{sc.ROD_LENGTH} m, {sc.ROD_MASS} kg, {sc.ROD_INERTIA} kg·m²",
+        "slider": f"{sc.SLIDER_MASS} kg",
+        "crank speed": "5000 rpm (CCW)",
+        "gravity": "9.81 m/s² (−y)",
+        "journal radius": f"{sc.JOURNAL_RADIUS} m",
+        "clearance": "0.5 mm (0.05 mm beyond the paper)",
+        "bearing length": f"{sc.BEARING_LENGTH} m",
+        "viscosity": f"{sc.VISCOSITY} Pa·s",
+        "dry contact": "Lankarani–Nikravesh, n = 1.5, c_r = 0.9, K from E = 207 GPa, ν = 0.3",
+        "bearing side": "bushing in the rod eye (body i), journal on the slider (body j)",
+        "initial state": "ideal mechanism at crank angle 0, journal centred (e = 0, ė = 0)",
+    }
     (out / "report.html").write_text(report_html(runs, figs, revs, params), encoding="utf-8")
     (out / "summary.md").write_text(summary_markdown(runs) + "\n")
     return runs

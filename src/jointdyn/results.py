@@ -46,7 +46,7 @@ class Results:
 
     @property
     def qd(self) -> np.ndarray:
-        return self.y[:, self.system.n:]
+        return self.y[:, self.system.n :]
 
     def coordinate(self, body: str, which: str) -> np.ndarray:
         """Time series of ``body``'s ``x``, ``y`` or ``phi`` [m or rad]."""
@@ -66,14 +66,25 @@ class Results:
         import xarray as xr
 
         s = self.system
-        coords = {"time": self.t, "coordinate": s.coordinate_labels(), "row": self._row_labels(),
-                  "element": list(s.element_names), "output": list(OUT_COLUMNS)}
+        coords = {
+            "time": self.t,
+            "coordinate": s.coordinate_labels(),
+            "row": self._row_labels(),
+            "element": list(s.element_names),
+            "output": list(OUT_COLUMNS),
+        }
         ds = xr.Dataset(
-            {"q": (("time", "coordinate"), self.q), "qd": (("time", "coordinate"), self.qd),
-             "qdd": (("time", "coordinate"), self.qdd), "lam": (("time", "row"), self.lam),
-             "element_outputs": (("time", "element", "output"), self.eout),
-             "drift_position": ("time", self.drift[:, 0]), "drift_velocity": ("time", self.drift[:, 1])},
-            coords=coords)
+            {
+                "q": (("time", "coordinate"), self.q),
+                "qd": (("time", "coordinate"), self.qd),
+                "qdd": (("time", "coordinate"), self.qdd),
+                "lam": (("time", "row"), self.lam),
+                "element_outputs": (("time", "element", "output"), self.eout),
+                "drift_position": ("time", self.drift[:, 0]),
+                "drift_velocity": ("time", self.drift[:, 1]),
+            },
+            coords=coords,
+        )
         ds["time"].attrs["units"] = "s"
         ds.attrs.update(self._provenance())
         return ds
@@ -85,8 +96,12 @@ class Results:
         import h5py
 
         s = self.system
-        labels = {"coordinate": s.coordinate_labels(), "row": self._row_labels(),
-                  "element": list(s.element_names), "output": list(OUT_COLUMNS)}
+        labels = {
+            "coordinate": s.coordinate_labels(),
+            "row": self._row_labels(),
+            "element": list(s.element_names),
+            "output": list(OUT_COLUMNS),
+        }
         with h5netcdf.File(path, "w") as f:
             f.dimensions = {"time": len(self.t), **{k: len(v) for k, v in labels.items()}}
             v = f.create_variable("time", ("time",), float)
@@ -95,24 +110,35 @@ class Results:
             for k, vals in labels.items():
                 if vals:
                     f.create_variable(k, (k,), h5py.string_dtype())[:] = np.array(vals, dtype=object)
-            for name, dims, arr in (("q", ("time", "coordinate"), self.q), ("qd", ("time", "coordinate"), self.qd),
-                                    ("qdd", ("time", "coordinate"), self.qdd), ("lam", ("time", "row"), self.lam),
-                                    ("element_outputs", ("time", "element", "output"), self.eout),
-                                    ("drift_position", ("time",), self.drift[:, 0]),
-                                    ("drift_velocity", ("time",), self.drift[:, 1])):
+            for name, dims, arr in (
+                ("q", ("time", "coordinate"), self.q),
+                ("qd", ("time", "coordinate"), self.qd),
+                ("qdd", ("time", "coordinate"), self.qdd),
+                ("lam", ("time", "row"), self.lam),
+                ("element_outputs", ("time", "element", "output"), self.eout),
+                ("drift_position", ("time",), self.drift[:, 0]),
+                ("drift_velocity", ("time",), self.drift[:, 1]),
+            ):
                 f.create_variable(name, dims, float)[...] = arr
             f.attrs.update(self._provenance())
 
     def _row_labels(self) -> list[str]:
         s = self.system
-        return [f"{n}[{r - a}]" for n, (a, b) in zip(s.constraint_names, s.constraint_rows) for r in range(a, b)]
+        return [
+            f"{n}[{r - a}]" for n, (a, b) in zip(s.constraint_names, s.constraint_rows) for r in range(a, b)
+        ]
 
     def _provenance(self) -> dict:
         s = self.system
-        return {"jointdyn_version": _version(), "model": json.dumps(s.model_dict, default=list),
-                "config": json.dumps(self.config, default=str), "stats": json.dumps(self.stats),
-                "wall_time_s": self.wall_time, "status": self.status,
-                "meta": json.dumps(self.meta, default=str)}
+        return {
+            "jointdyn_version": _version(),
+            "model": json.dumps(s.model_dict, default=list),
+            "config": json.dumps(self.config, default=str),
+            "stats": json.dumps(self.stats),
+            "wall_time_s": self.wall_time,
+            "status": self.status,
+            "meta": json.dumps(self.meta, default=str),
+        }
 
 
 def load(path):

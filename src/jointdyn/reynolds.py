@@ -42,7 +42,13 @@ class _Film:
     """p′(α) of the full (Sommerfeld) film in units of 6μR²/c² (so p′ = (6μR²/c²)·dp(α))."""
 
     def __init__(self, xi, xi_dot, gamma_dot, omega_journal, omega_bearing, gamma):
-        self.xi, self.xd, self.gd, self.ws, self.g = xi, xi_dot, gamma_dot, omega_journal + omega_bearing, gamma
+        self.xi, self.xd, self.gd, self.ws, self.g = (
+            xi,
+            xi_dot,
+            gamma_dot,
+            omega_journal + omega_bearing,
+            gamma,
+        )
         # periodicity constant C̃ = −∮N/H³ / ∮1/H³ (step 2) [T31]
         a, b = gamma - math.pi, gamma + math.pi
         self.C = 0.0
@@ -87,6 +93,7 @@ class _Film:
 
     def pi_film_start(self):
         """Start α₁ [rad] of the positive π-film (step 3) [T32]."""
+
         def d(x):  # ∝ p_S(x+π) − p_S(x); same roots as p_S(x) − p_S(x+π)
             return self.integral(self.dp, x, x + math.pi)
 
@@ -106,7 +113,7 @@ class _Film:
 
 def _scale(mu, R, L, c):
     """RL·6μR²/c² = 6k, k = μLR³/c² [N·s]"""
-    return 6.0 * mu * L * R ** 3 / (c * c)
+    return 6.0 * mu * L * R**3 / (c * c)
 
 
 def full_film_force(xi, xi_dot, gamma_dot, omega_journal, omega_bearing, mu, R, L, c, gamma=0.0):

@@ -20,23 +20,37 @@ from .simulate import SimConfig, simulate
 DEFAULT_SOLVER = {"perfect": "dopri5", "dry": "dopri5"}
 
 
-def slider_crank_config(joint: str, revs: float = 4.0, samples_per_rev: int = 720,
-                        solver: str | None = None, rtol: float = 1e-8, atol: float = 1e-10,
-                        speed: float = sc.SPEED) -> SimConfig:
+def slider_crank_config(
+    joint: str,
+    revs: float = 4.0,
+    samples_per_rev: int = 720,
+    solver: str | None = None,
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    speed: float = sc.SPEED,
+) -> SimConfig:
     """Integration settings for ``revs`` crank revolutions at ``speed`` [rad/s]."""
     if not (math.isfinite(revs) and revs > 0):
         raise ValueError(f"revs = {revs!r} [revolutions]: must be > 0")
     t_end = revs * 2 * math.pi / speed
-    return SimConfig(t_end=t_end, n_out=int(round(revs * samples_per_rev)) + 1,
-                     solver=solver or DEFAULT_SOLVER.get(joint, "rodas4"), rtol=rtol, atol=atol)
+    return SimConfig(
+        t_end=t_end,
+        n_out=int(round(revs * samples_per_rev)) + 1,
+        solver=solver or DEFAULT_SOLVER.get(joint, "rodas4"),
+        rtol=rtol,
+        atol=atol,
+    )
 
 
 def slider_crank_table(res, joint_element: str | None = None) -> dict[str, np.ndarray]:
     """Time series of a slider-crank run: t [s], crank_angle [rad, unwrapped], crank_moment
     [N·m] (the drive's moment on the crank, CCW positive), and for an imperfect piston pin
     ex_over_c, ey_over_c [-], h_min [m], joint_force [N] (magnitude on the journal)."""
-    cols = {"t": res.t, "crank_angle": post.body_angle(res, "crank"),
-            "crank_moment": post.driving_moment(res, "drive")}
+    cols = {
+        "t": res.t,
+        "crank_angle": post.body_angle(res, "crank"),
+        "crank_moment": post.driving_moment(res, "drive"),
+    }
     if joint_element is not None:
         c = res.system.elements[res.system.element_names.index(joint_element)].clearance
         cols["ex_over_c"] = res.element(joint_element, "ex") / c
@@ -52,10 +66,16 @@ def summarize(res, cols: dict, revs: float) -> dict:
     t_last = res.t[-1] - (res.t[-1] / revs if revs >= 1 else res.t[-1])
     last = post.window(res, t_last)
     m = cols["crank_moment"]
-    out = {"joint": res.system.name, "revolutions": revs, "solver": res.config["solver"],
-           "rtol": res.config["rtol"], "wall_time_s": res.wall_time, **res.stats,
-           "max_drift_position": float(res.drift[:, 0].max()),
-           "max_drift_velocity": float(res.drift[:, 1].max())}
+    out = {
+        "joint": res.system.name,
+        "revolutions": revs,
+        "solver": res.config["solver"],
+        "rtol": res.config["rtol"],
+        "wall_time_s": res.wall_time,
+        **res.stats,
+        "max_drift_position": float(res.drift[:, 0].max()),
+        "max_drift_velocity": float(res.drift[:, 1].max()),
+    }
     out.update({f"{k}_moment": v for k, v in post.stats(m[last]).items()})
     out.update({f"{k}_moment_all": v for k, v in post.stats(m).items()})
     if "ex_over_c" in cols:
@@ -105,8 +125,14 @@ def write_run(out: Path, res, cols: dict, summary: dict, title: str) -> None:
         plt.close(fig)
 
 
-def run_slider_crank(joint: str = "perfect", revs: float = 4.0, out: Path | None = None,
-                     progress=None, model_kw: dict | None = None, **cfg_kw):
+def run_slider_crank(
+    joint: str = "perfect",
+    revs: float = 4.0,
+    out: Path | None = None,
+    progress=None,
+    model_kw: dict | None = None,
+    **cfg_kw,
+):
     """Simulate the benchmark slider-crank; optionally write the run files. Returns
     (results, columns, summary)."""
     model = sc.slider_crank(joint, **(model_kw or {}))

@@ -12,8 +12,7 @@ from .dynamics import outputs
 from .errors import SimulationError
 from .forces.elements import FILM_BREAKDOWN
 from .integrators import SOLVERS
-from .integrators.common import (MAX_STEPS, MEMORY_FAILED, OK, PROJECTION_FAILED, RHS_FAILED,
-                                 STEP_TOO_SMALL)
+from .integrators.common import MAX_STEPS, MEMORY_FAILED, OK, PROJECTION_FAILED, RHS_FAILED, STEP_TOO_SMALL
 from .results import Results
 from .system import System
 
@@ -21,9 +20,9 @@ _MESSAGES = {
     STEP_TOO_SMALL: "step size collapsed below 1e-14·t_end",
     MAX_STEPS: "maximum number of steps reached (raise SimConfig.max_steps)",
     RHS_FAILED: "the equations of motion could not be evaluated (singular constraint Jacobian or "
-                "non-finite accelerations)",
+    "non-finite accelerations)",
     MEMORY_FAILED: "an element left its admissible range (e.g. film breakdown ξ ≥ 1 in a "
-                   "journal bearing without a contact law)",
+    "journal bearing without a contact law)",
     PROJECTION_FAILED: "projection onto the constraints failed (singular constraint Jacobian)",
 }
 
@@ -31,9 +30,11 @@ _MESSAGES = {
 def _message(system: System, status: int) -> str:
     if status >= FILM_BREAKDOWN:
         name = system.element_names[status - FILM_BREAKDOWN]
-        return (f"film breakdown in element {name!r}: the journal reached the bearing wall (ξ ≥ 1, "
-                f"h_min ≤ 0) and the bearing has no contact law; give it `contact=` (mixed "
-                f"film/contact regime), or raise viscosity/clearance")
+        return (
+            f"film breakdown in element {name!r}: the journal reached the bearing wall (ξ ≥ 1, "
+            f"h_min ≤ 0) and the bearing has no contact law; give it `contact=` (mixed "
+            f"film/contact regime), or raise viscosity/clearance"
+        )
     return _MESSAGES.get(status, f"status {status}")
 
 
@@ -47,9 +48,15 @@ def _element_hint(system: System, P, t, y, mem) -> str:
         if isinstance(el, (JournalBearing, ClearanceJoint)):
             xi = float(eout[0, k, 2])
             if xi > 0.99:  # near the wall the film is stiff: the usual cause of step collapse
-                hints.append(f"element {name!r} was at ξ = {xi:.6f} (h_min = {eout[0, k, 3]:.3g} m)" + ("; the film alone cannot carry the load there — give "
-                                                         "the bearing a contact law (mixed regime)"
-                                                         if isinstance(el, JournalBearing) and el.contact is None else ""))
+                hints.append(
+                    f"element {name!r} was at ξ = {xi:.6f} (h_min = {eout[0, k, 3]:.3g} m)"
+                    + (
+                        "; the film alone cannot carry the load there — give "
+                        "the bearing a contact law (mixed regime)"
+                        if isinstance(el, JournalBearing) and el.contact is None
+                        else ""
+                    )
+                )
     return ("; " + "; ".join(hints)) if hints else ""
 
 
@@ -115,11 +122,22 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
         tc = t_out[idx]
         if projects:
             Y, MEM, nw, st, status, t_reached, h, y_fin, mem_fin = runner(
-                P, y, mem, t, tc, config.rtol, config.atol, h, config.max_step,
-                config.max_steps - int(stats[1] + stats[2]), True)
+                P,
+                y,
+                mem,
+                t,
+                tc,
+                config.rtol,
+                config.atol,
+                h,
+                config.max_step,
+                config.max_steps - int(stats[1] + stats[2]),
+                True,
+            )
         else:
             Y, MEM, nw, st, status, t_reached, _, y_fin, mem_fin = runner(
-                P, y, mem, t, tc, config.rtol, config.atol, max_step=config.max_step)
+                P, y, mem, t, tc, config.rtol, config.atol, max_step=config.max_step
+            )
         stats += st
         Ys.append(Y[:nw])
         MEMs.append(MEM[:nw])
@@ -134,16 +152,34 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
     nw = Y.shape[0]
     ts = t_out[:nw]
     qdd, lam, eout, drift = outputs(ts, Y, MEM, P, projects)
-    res = Results(system=system, t=ts, y=Y, mem=MEM, qdd=qdd, lam=lam, eout=eout, drift=drift,
-                  stats={"rhs_evaluations": int(stats[0]), "accepted_steps": int(stats[1]),
-                         "rejected_steps": int(stats[2]), "jacobians": int(stats[3])},
-                  wall_time=wall, config=asdict(config) | {"baumgarte": a}, status=int(status))
+    res = Results(
+        system=system,
+        t=ts,
+        y=Y,
+        mem=MEM,
+        qdd=qdd,
+        lam=lam,
+        eout=eout,
+        drift=drift,
+        stats={
+            "rhs_evaluations": int(stats[0]),
+            "accepted_steps": int(stats[1]),
+            "rejected_steps": int(stats[2]),
+            "jacobians": int(stats[3]),
+        },
+        wall_time=wall,
+        config=asdict(config) | {"baumgarte": a},
+        status=int(status),
+    )
     if status != OK:
-        raise SimulationError(f"simulation of {system.name!r} failed at t = {t_reached:.9g} s "
-                              f"with solver {config.solver!r}: {_message(system, status)}; "
-                              f"{nw} of {len(t_out)} output samples were computed (kept in "
-                              f".results){_element_hint(system, P, t_reached, y_fin, mem_fin)}",
-                              t_reached, res)
+        raise SimulationError(
+            f"simulation of {system.name!r} failed at t = {t_reached:.9g} s "
+            f"with solver {config.solver!r}: {_message(system, status)}; "
+            f"{nw} of {len(t_out)} output samples were computed (kept in "
+            f".results){_element_hint(system, P, t_reached, y_fin, mem_fin)}",
+            t_reached,
+            res,
+        )
     bad = ~np.isfinite(res.y).all(axis=1)
     if bad.any():
         raise SimulationError(f"non-finite state at t = {ts[bad][0]:.9g} s", ts[bad][0], res)

@@ -35,10 +35,27 @@ from pathlib import Path
 
 import numpy as np
 
-METRICS = ("peak_moment", "min_moment", "rms_moment", "max_xi", "min_h_min", "impacts",
-           "energy_dissipated", "wall_time_s", "rhs_evaluations")
-MODEL_ARGS = ("joint", "speed", "gravity", "clearance", "viscosity", "length", "restitution",
-              "asperity_height")
+METRICS = (
+    "peak_moment",
+    "min_moment",
+    "rms_moment",
+    "max_xi",
+    "min_h_min",
+    "impacts",
+    "energy_dissipated",
+    "wall_time_s",
+    "rhs_evaluations",
+)
+MODEL_ARGS = (
+    "joint",
+    "speed",
+    "gravity",
+    "clearance",
+    "viscosity",
+    "length",
+    "restitution",
+    "asperity_height",
+)
 RUN_ARGS = ("solver", "rtol", "atol", "samples_per_rev")
 
 
@@ -103,13 +120,20 @@ def load_sweep(path) -> SweepSpec:
         raise ValueError(f"{path}: missing [base] table")
     out = doc.get("output", {})
     if set(out) - {"keep_series"}:
-        raise ValueError(f"{path}: [output] unknown key(s) {sorted(set(out) - {'keep_series'})}; valid: ['keep_series']")
+        raise ValueError(
+            f"{path}: [output] unknown key(s) {sorted(set(out) - {'keep_series'})}; valid: ['keep_series']"
+        )
     base = dict(doc["base"])
     if "file" in base:
         base["file"] = str((path.parent / base["file"]).resolve())
-    spec = SweepSpec(base=base, grid=doc.get("grid", {}), zipped=doc.get("zip", {}),
-                     sample=doc.get("sample", {}), keep_series=bool(out.get("keep_series", False)),
-                     scheduler=doc.get("dask", {}).get("scheduler"))
+    spec = SweepSpec(
+        base=base,
+        grid=doc.get("grid", {}),
+        zipped=doc.get("zip", {}),
+        sample=doc.get("sample", {}),
+        keep_series=bool(out.get("keep_series", False)),
+        scheduler=doc.get("dask", {}).get("scheduler"),
+    )
     for name in itertools.chain(spec.grid, spec.zipped, spec.sample.get("ranges", {})):
         _check_param(base, name)
     return spec
@@ -144,10 +168,13 @@ def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
                 raise ValueError(f"unknown model {merged.get('model')!r}; valid: ['slider-crank']")
             model_kw = {k: merged[k] for k in MODEL_ARGS if k in merged and k != "joint"}
             run_kw = {k: merged[k] for k in RUN_ARGS if k in merged}
-            res, cols, summ = run_slider_crank(merged.get("joint", "perfect"), float(merged.get("revs", 4)),
-                                               model_kw=model_kw, **run_kw)
-            metrics = {k: summ.get(k, math.nan) for k in ("peak_moment", "min_moment", "rms_moment",
-                                                          "max_xi", "min_h_min", "rhs_evaluations")}
+            res, cols, summ = run_slider_crank(
+                merged.get("joint", "perfect"), float(merged.get("revs", 4)), model_kw=model_kw, **run_kw
+            )
+            metrics = {
+                k: summ.get(k, math.nan)
+                for k in ("peak_moment", "min_moment", "rms_moment", "max_xi", "min_h_min", "rhs_evaluations")
+            }
         names = res.system.element_names
         if names:  # the joint under study: "piston_pin" in the shipped model, else the first
             k = names.index("piston_pin") if "piston_pin" in names else 0
@@ -156,8 +183,10 @@ def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
         metrics["wall_time_s"] = time.perf_counter() - t0
         if series_path:
             res.save(series_path)
-        return {k: (float(v) if isinstance(v, (int, float, np.floating, np.integer)) else v)
-                for k, v in metrics.items()}
+        return {
+            k: (float(v) if isinstance(v, (int, float, np.floating, np.integer)) else v)
+            for k, v in metrics.items()
+        }
     except Exception as err:  # recorded, the sweep goes on
         return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
 
@@ -168,17 +197,33 @@ def _write_atomic(path: Path, data: dict):
     os.replace(tmp, path)
 
 
-def run_sweep(spec: SweepSpec, out, resume: bool = False, scheduler: str | None = None,
-              workers: int | None = None, progress=None):
+def run_sweep(
+    spec: SweepSpec,
+    out,
+    resume: bool = False,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    progress=None,
+):
     """Run all cases not yet done; write per-case files and ``sweep.nc``. Returns the Dataset."""
     out = Path(out)
     cdir = out / "cases"
     cdir.mkdir(parents=True, exist_ok=True)
     cases = spec.cases()
-    (out / "spec.json").write_text(json.dumps({"base": spec.base, "grid": spec.grid, "zip": spec.zipped,
-                                               "sample": spec.sample, "n_cases": len(cases)}, default=str))
+    (out / "spec.json").write_text(
+        json.dumps(
+            {
+                "base": spec.base,
+                "grid": spec.grid,
+                "zip": spec.zipped,
+                "sample": spec.sample,
+                "n_cases": len(cases),
+            },
+            default=str,
+        )
+    )
     todo = []
-    for i, p in enumerate(cases):
+    for i in range(len(cases)):
         f = cdir / f"case_{i:05d}.json"
         if resume and f.exists():
             continue
@@ -221,11 +266,15 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
     import xarray as xr
 
     rows = [json.loads((out / "cases" / f"case_{i:05d}.json").read_text()) for i in range(len(cases))]
-    data = {m: np.array([r.get(m, np.nan) if not isinstance(r.get(m), str) else np.nan for r in rows], float)
-            for m in METRICS}
+    data = {
+        m: np.array([r.get(m, np.nan) if not isinstance(r.get(m), str) else np.nan for r in rows], float)
+        for m in METRICS
+    }
     errors = np.array([r.get("error", "") for r in rows], dtype=object)
-    ds = xr.Dataset({m: ("case", v) for m, v in data.items()} | {"error": ("case", errors.astype(str))},
-                    coords={"case": np.arange(len(cases))})
+    ds = xr.Dataset(
+        {m: ("case", v) for m, v in data.items()} | {"error": ("case", errors.astype(str))},
+        coords={"case": np.arange(len(cases))},
+    )
     for name in sorted({k for c in cases for k in c}):
         ds.coords[name] = ("case", np.array([c.get(name, np.nan) for c in cases], dtype=float))
     if spec.grid and not spec.zipped and not spec.sample:

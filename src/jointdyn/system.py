@@ -47,8 +47,18 @@ class System:
         from .dynamics import workspace_size
 
         ws = np.zeros(workspace_size(self.n, self.n_rows, self.fint.shape[0]))
-        return (self.minv, self.q0_force, self.cint, self.creal, self.fint, self.freal,
-                self.tables, int(self.n_rows), np.array([float(baumgarte)]), ws)
+        return (
+            self.minv,
+            self.q0_force,
+            self.cint,
+            self.creal,
+            self.fint,
+            self.freal,
+            self.tables,
+            int(self.n_rows),
+            np.array([float(baumgarte)]),
+            ws,
+        )
 
     def coordinate_labels(self) -> list[str]:
         return [f"{b}.{c}" for b in self.body_names for c in ("x", "y", "phi")]
@@ -61,7 +71,8 @@ class System:
         try:
             a, b = self.constraint_rows[self.constraint_names.index(constraint)]
         except ValueError:
-            raise KeyError(f"no constraint named {constraint!r}; have {list(self.constraint_names)}")
+            names = list(self.constraint_names)
+            raise KeyError(f"no constraint named {constraint!r}; have {names}") from None
         return slice(a, b)
 
 

@@ -114,8 +114,13 @@ class KelvinVoigt:
         return (float(self.stiffness), 1.0, float(self.damping), 0.0)
 
 
-CONTACT_LAWS = {"hertz": Hertz, "lankarani_nikravesh": LankaraniNikravesh, "hunt_crossley": HuntCrossley,
-                "flores": Flores, "kelvin_voigt": KelvinVoigt}
+CONTACT_LAWS = {
+    "hertz": Hertz,
+    "lankarani_nikravesh": LankaraniNikravesh,
+    "hunt_crossley": HuntCrossley,
+    "flores": Flores,
+    "kelvin_voigt": KelvinVoigt,
+}
 
 
 def law_from_name(name: str, **kwargs):
@@ -135,7 +140,13 @@ def journal_bearing_stiffness(R_bearing, R_journal, E_bearing, nu_bearing, E_jou
         _check("journal_bearing_stiffness", name, v, unit, "> 0", lambda x: x > 0)
     for name, v in (("nu_bearing", nu_bearing), ("nu_journal", nu_journal)):
         _check("journal_bearing_stiffness", name, v, "-", "in (-1, 0.5)", lambda x: -1 < x < 0.5)
-    _check("journal_bearing_stiffness", "R_journal", R_journal, "m", f"in (0, R_bearing = {R_bearing})",
-           lambda x: 0 < x < R_bearing)
+    _check(
+        "journal_bearing_stiffness",
+        "R_journal",
+        R_journal,
+        "m",
+        f"in (0, R_bearing = {R_bearing})",
+        lambda x: 0 < x < R_bearing,
+    )
     s = (1 - nu_bearing**2) / E_bearing + (1 - nu_journal**2) / E_journal
     return (4.0 / 3.0) / s * math.sqrt(R_bearing * R_journal / (R_bearing - R_journal))

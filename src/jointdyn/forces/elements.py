@@ -12,8 +12,18 @@ from __future__ import annotations
 
 from numba import njit
 
-from .journal import (CONTACT, IN_CONTACT, JOURNAL, ONSET_TOL, ONSET_VEL, V_MIN, ClearanceJoint,
-                      JournalBearing, journal_element, penetration)
+from .journal import (
+    CONTACT,
+    IN_CONTACT,
+    JOURNAL,
+    ONSET_TOL,
+    ONSET_VEL,
+    V_MIN,
+    ClearanceJoint,
+    JournalBearing,
+    journal_element,
+    penetration,
+)
 from .springs import SPRING_DAMPER, SpringDamper, spring_damper
 from .tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
 
@@ -23,8 +33,12 @@ NMEM = 4
 NREAL = 24
 NINT = 8
 
-FORCE_ELEMENTS = {"spring_damper": SpringDamper, "clearance_joint": ClearanceJoint,
-                  "journal_bearing": JournalBearing, "tabulated_force": TabulatedForce}
+FORCE_ELEMENTS = {
+    "spring_damper": SpringDamper,
+    "clearance_joint": ClearanceJoint,
+    "journal_bearing": JournalBearing,
+    "tabulated_force": TabulatedForce,
+}
 
 MAX_PEN = 3  # mem column: largest penetration at an accepted step [m] (0 if none)
 FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law
@@ -120,12 +134,12 @@ def element_tables(elements, body_index, point_of):
             freal[k, 4:7] = (*(d / np.hypot(*d)), e.period)
             continue
         ints = e.int_params() if hasattr(e, "int_params") else ()
-        fint[k, 3:3 + len(ints)] = ints
+        fint[k, 3 : 3 + len(ints)] = ints
         freal[k, 0:2] = point_of(e.body_i, e.point_i)
         p = e.params()
-        freal[k, 4:4 + len(p)] = p
+        freal[k, 4 : 4 + len(p)] = p
     rows = max(t.shape[0] for t in tabs)
     tables = np.zeros((len(tabs), rows, 2))
     for i, t in enumerate(tabs):
-        tables[i, :t.shape[0]] = t
+        tables[i, : t.shape[0]] = t
     return fint, freal, tables, mem0

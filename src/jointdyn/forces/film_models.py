@@ -131,13 +131,24 @@ class Alshaer2005:
 
 FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005}
 
-_UNITS = {"xi": "-", "xi_dot": "1/s", "gamma": "rad", "gamma_dot": "rad/s", "omega_journal": "rad/s",
-          "omega_bearing": "rad/s", "viscosity": "Pa·s", "length": "m", "radius": "m", "clearance": "m"}
+_UNITS = {
+    "xi": "-",
+    "xi_dot": "1/s",
+    "gamma": "rad",
+    "gamma_dot": "rad/s",
+    "omega_journal": "rad/s",
+    "omega_bearing": "rad/s",
+    "viscosity": "Pa·s",
+    "length": "m",
+    "radius": "m",
+    "clearance": "m",
+}
 _NO_TABLE = np.zeros((1, 1, 1))
 
 
-def film_forces(model, xi, xi_dot, gamma, gamma_dot, omega_journal, omega_bearing, viscosity,
-                length, radius, clearance):
+def film_forces(
+    model, xi, xi_dot, gamma, gamma_dot, omega_journal, omega_bearing, viscosity, length, radius, clearance
+):
     """Film force on the journal for arrays of states (numpy broadcasting, SI, global rates).
 
     model          name in ``FILM_MODELS`` ("ott", "alshaer2005")
@@ -158,9 +169,18 @@ def film_forces(model, xi, xi_dot, gamma, gamma_dot, omega_journal, omega_bearin
     """
     if not isinstance(model, str) or model not in FILM_MODELS:
         raise ValueError(f"film model {model!r} is unknown; valid names: {', '.join(FILM_MODELS)}")
-    args = dict(xi=xi, xi_dot=xi_dot, gamma=gamma, gamma_dot=gamma_dot, omega_journal=omega_journal,
-                omega_bearing=omega_bearing, viscosity=viscosity, length=length, radius=radius,
-                clearance=clearance)
+    args = dict(
+        xi=xi,
+        xi_dot=xi_dot,
+        gamma=gamma,
+        gamma_dot=gamma_dot,
+        omega_journal=omega_journal,
+        omega_bearing=omega_bearing,
+        viscosity=viscosity,
+        length=length,
+        radius=radius,
+        clearance=clearance,
+    )
     try:
         arr = dict(zip(args, np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in args.values()])))
     except ValueError as err:
@@ -168,13 +188,15 @@ def film_forces(model, xi, xi_dot, gamma, gamma_dot, omega_journal, omega_bearin
     for name, v in arr.items():
         bad = np.flatnonzero(~np.isfinite(v))
         if bad.size:
-            raise ValueError(f"{name} [{_UNITS[name]}] must be finite; got {v.flat[bad[0]]!r} "
-                             f"at index {bad[0]}")
+            raise ValueError(
+                f"{name} [{_UNITS[name]}] must be finite; got {v.flat[bad[0]]!r} at index {bad[0]}"
+            )
     for name in ("viscosity", "length", "radius", "clearance"):
         bad = np.flatnonzero(arr[name] <= 0.0)
         if bad.size:
-            raise ValueError(f"{name} [{_UNITS[name]}] must be > 0; got {arr[name].flat[bad[0]]!r} "
-                             f"at index {bad[0]}")
+            raise ValueError(
+                f"{name} [{_UNITS[name]}] must be > 0; got {arr[name].flat[bad[0]]!r} at index {bad[0]}"
+            )
     x = arr["xi"]
     bad = np.flatnonzero((x < 0.0) | (x >= 1.0))
     if bad.size:
@@ -184,9 +206,21 @@ def film_forces(model, xi, xi_dot, gamma, gamma_dot, omega_journal, omega_bearin
     fr = np.empty(x.shape)
     ft = np.empty(x.shape)
     for i in range(x.size):
-        fr.flat[i], ft.flat[i] = film_force(code, x.flat[i], arr["xi_dot"].flat[i], xi_om.flat[i],
-                                            arr["viscosity"].flat[i], arr["radius"].flat[i],
-                                            arr["length"].flat[i], arr["clearance"].flat[i], _NO_TABLE)
+        fr.flat[i], ft.flat[i] = film_force(
+            code,
+            x.flat[i],
+            arr["xi_dot"].flat[i],
+            xi_om.flat[i],
+            arr["viscosity"].flat[i],
+            arr["radius"].flat[i],
+            arr["length"].flat[i],
+            arr["clearance"].flat[i],
+            _NO_TABLE,
+        )
     g = arr["gamma"]
-    return {"Fr": fr, "Ft": ft,
-            "Fx": fr * np.cos(g) - ft * np.sin(g), "Fy": fr * np.sin(g) + ft * np.cos(g)}  # [T27]
+    return {
+        "Fr": fr,
+        "Ft": ft,
+        "Fx": fr * np.cos(g) - ft * np.sin(g),
+        "Fy": fr * np.sin(g) + ft * np.cos(g),
+    }  # [T27]

@@ -52,7 +52,9 @@ class Coulomb:
 
     def __post_init__(self):
         _check("Coulomb", "coefficient", self.coefficient, "-", "≥ 0", lambda v: v >= 0)
-        _check("Coulomb", "regularization_velocity", self.regularization_velocity, "m/s", "> 0", lambda v: v > 0)
+        _check(
+            "Coulomb", "regularization_velocity", self.regularization_velocity, "m/s", "> 0", lambda v: v > 0
+        )
 
     def params(self):
         return (float(self.coefficient), float(self.regularization_velocity), 0.0, 0.0)

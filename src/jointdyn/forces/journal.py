@@ -85,16 +85,28 @@ class ClearanceJoint:
     def validate(self):
         o = type(self).__name__
         _check(o, "bearing_radius", self.bearing_radius, "m", "> 0", lambda v: v > 0)
-        _check(o, "journal_radius", self.journal_radius, "m", f"in (0, bearing_radius = {self.bearing_radius})",
-               lambda v: 0 < v < self.bearing_radius)
+        _check(
+            o,
+            "journal_radius",
+            self.journal_radius,
+            "m",
+            f"in (0, bearing_radius = {self.bearing_radius})",
+            lambda v: 0 < v < self.bearing_radius,
+        )
         _check(o, "onset_tolerance", self.onset_tolerance, "m", "> 0", lambda v: v > 0)
         _check(o, "min_impact_velocity", self.min_impact_velocity, "m/s", "> 0", lambda v: v > 0)
         if isinstance(self, ClearanceJoint) and self.contact is None:
-            raise ValueError(f"{o}.contact: a dry clearance joint needs a contact law; valid: {sorted(CONTACT_LAWS)}")
+            raise ValueError(
+                f"{o}.contact: a dry clearance joint needs a contact law; valid: {sorted(CONTACT_LAWS)}"
+            )
         if self.contact is not None and type(self.contact) not in CONTACT_LAWS.values():
-            raise ValueError(f"{o}.contact = {self.contact!r}: not a contact law; valid: {sorted(CONTACT_LAWS)}")
+            raise ValueError(
+                f"{o}.contact = {self.contact!r}: not a contact law; valid: {sorted(CONTACT_LAWS)}"
+            )
         if self.friction is not None and type(self.friction) not in FRICTION_LAWS.values():
-            raise ValueError(f"{o}.friction = {self.friction!r}: not a friction law; valid: {sorted(FRICTION_LAWS)}")
+            raise ValueError(
+                f"{o}.friction = {self.friction!r}: not a friction law; valid: {sorted(FRICTION_LAWS)}"
+            )
 
     def int_params(self):
         return (-1, self.contact.code, self.friction.code if self.friction is not None else 0, 0)
@@ -102,8 +114,18 @@ class ClearanceJoint:
     def params(self):
         c = self.clearance
         fp = self.friction.params() if self.friction is not None else (0.0, 0.0, 0.0, 0.0)
-        return (self.bearing_radius, self.journal_radius, 0.0, 0.0, c, 0.0, self.onset_tolerance,
-                self.min_impact_velocity, *self.contact.params(), *fp)
+        return (
+            self.bearing_radius,
+            self.journal_radius,
+            0.0,
+            0.0,
+            c,
+            0.0,
+            self.onset_tolerance,
+            self.min_impact_velocity,
+            *self.contact.params(),
+            *fp,
+        )
 
 
 @dataclass(frozen=True)
@@ -145,20 +167,40 @@ class JournalBearing:
         ClearanceJoint.validate(self)
         _check(o, "length", self.length, "m", "> 0", lambda v: v > 0)
         _check(o, "viscosity", self.viscosity, "Pa·s", "> 0", lambda v: v > 0)
-        _check(o, "asperity_height", self.asperity_height, "m", f"in [0, clearance = {self.clearance:.6g})",
-               lambda v: 0 <= v < self.clearance)
+        _check(
+            o,
+            "asperity_height",
+            self.asperity_height,
+            "m",
+            f"in [0, clearance = {self.clearance:.6g})",
+            lambda v: 0 <= v < self.clearance,
+        )
         if self.film not in FILM_MODELS:
             raise ValueError(f"{o}.film = {self.film!r}: unknown film model; valid: {sorted(FILM_MODELS)}")
 
     def int_params(self):
-        return (FILM_MODELS[self.film].code, self.contact.code if self.contact is not None else -1,
-                self.friction.code if self.friction is not None else 0, 0)
+        return (
+            FILM_MODELS[self.film].code,
+            self.contact.code if self.contact is not None else -1,
+            self.friction.code if self.friction is not None else 0,
+            0,
+        )
 
     def params(self):
         fp = self.friction.params() if self.friction is not None else (0.0, 0.0, 0.0, 0.0)
         cp = self.contact.params() if self.contact is not None else (0.0, 0.0, 0.0, 0.0)
-        return (self.bearing_radius, self.journal_radius, self.length, self.viscosity, self.clearance,
-                self.asperity_height, self.onset_tolerance, self.min_impact_velocity, *cp, *fp)
+        return (
+            self.bearing_radius,
+            self.journal_radius,
+            self.length,
+            self.viscosity,
+            self.clearance,
+            self.asperity_height,
+            self.onset_tolerance,
+            self.min_impact_velocity,
+            *cp,
+            *fp,
+        )
 
 
 @njit(cache=True)
@@ -224,10 +266,10 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
         if delta > 0.0:
             dd = ux * edx + uy * edy
             v0 = mem[ONSET_VEL] if mem[IN_CONTACT] > 0.5 else max(dd, r[V_MIN])
-            fn = contact_force(ip[CONTACT], delta, dd, v0, r[CP0:CP0 + 4])
+            fn = contact_force(ip[CONTACT], delta, dd, v0, r[CP0 : CP0 + 4])
             # slip of the journal surface relative to the bearing surface at P_c [T16]
             vt = tx * edx + ty * edy + wj * r[R_J] - wi * r[R_B]
-            mu = friction_coefficient(ip[FRICTION], vt, r[FP0:FP0 + 4]) if ip[FRICTION] > 0 else 0.0
+            mu = friction_coefficient(ip[FRICTION], vt, r[FP0 : FP0 + 4]) if ip[FRICTION] > 0 else 0.0
             fcx = -fn * ux - mu * fn * tx
             fcy = -fn * uy - mu * fn * ty
             cx = r[R_J] * ux  # P_c − P_j

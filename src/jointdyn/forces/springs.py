@@ -34,9 +34,11 @@ class SpringDamper:
         return (self.stiffness, self.damping, self.free_length)
 
     def validate(self):
-        for name, v, unit in (("stiffness", self.stiffness, "N/m"),
-                              ("damping", self.damping, "N·s/m"),
-                              ("free_length", self.free_length, "m")):
+        for name, v, unit in (
+            ("stiffness", self.stiffness, "N/m"),
+            ("damping", self.damping, "N·s/m"),
+            ("free_length", self.free_length, "m"),
+        ):
             if not math.isfinite(v) or v < 0:
                 raise ValueError(f"SpringDamper.{name} = {v!r} [{unit}]: must be finite and ≥ 0")
 

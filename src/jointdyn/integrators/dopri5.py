@@ -13,8 +13,7 @@ from numba import njit
 
 from ..dynamics import rhs
 from ..forces.elements import onset_fraction, step_limit
-from .common import (MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, error_norm,
-                     write_dense)
+from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, error_norm, write_dense
 
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
 A21 = 1 / 5
@@ -49,9 +48,16 @@ def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
         Y[iout] = y
         MEM[iout] = mem
         iout += 1
-    k1 = np.empty(nn); k2 = np.empty(nn); k3 = np.empty(nn); k4 = np.empty(nn)
-    k5 = np.empty(nn); k6 = np.empty(nn); k7 = np.empty(nn)
-    yt = np.empty(nn); y1 = np.empty(nn); err = np.empty(nn)
+    k1 = np.empty(nn)
+    k2 = np.empty(nn)
+    k3 = np.empty(nn)
+    k4 = np.empty(nn)
+    k5 = np.empty(nn)
+    k6 = np.empty(nn)
+    k7 = np.empty(nn)
+    yt = np.empty(nn)
+    y1 = np.empty(nn)
+    err = np.empty(nn)
     st = accept_hooks(t, y, mem, P, do_project)
     if st != OK:
         return Y, MEM, iout, stats, st, t, h, y, mem
@@ -104,7 +110,7 @@ def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
             continue
         if en > 1.0:
             stats[2] += 1
-            h *= max(0.2, 0.9 * en ** -0.2)
+            h *= max(0.2, 0.9 * en**-0.2)
             continue
         frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P[4], P[5])
         if frac < 1.0:

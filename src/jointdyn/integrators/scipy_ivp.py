@@ -41,6 +41,7 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
             # onset: δ rises through +1e-12 m; separation: δ falls through −1e-12 m (the offsets keep
             # a restart exactly at the root from re-triggering the same event)
             return d - 1e-12 if mem[k, IN_CONTACT] < 0.5 else -d - 1e-12
+
         ev.terminal = True
         ev.direction = 1.0
         return ev
@@ -58,8 +59,18 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
         te = t_out[iout:]
         # after an event restart with a small first step: scipy's initial-step heuristic would
         # otherwise jump deep into the stiff contact and an explicit method can blow up
-        sol = solve_ivp(f, (t, t_out[-1]), y, method=method, t_eval=te, rtol=rtol, atol=atol,
-                        max_step=max_step, events=events or None, first_step=first)
+        sol = solve_ivp(
+            f,
+            (t, t_out[-1]),
+            y,
+            method=method,
+            t_eval=te,
+            rtol=rtol,
+            atol=atol,
+            max_step=max_step,
+            events=events or None,
+            first_step=first,
+        )
         first = 1e-9 * max(1.0, abs(t_out[-1]))
         stats[0] += sol.nfev
         stats[3] += getattr(sol, "njev", 0)
@@ -72,7 +83,9 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
         if sol.status == 1:  # an event: advance memory at the event state, restart after it
             k_ev = next(i for i, e in enumerate(sol.t_events) if len(e))
             t, y = sol.t_events[k_ev][0], sol.y_events[k_ev][0].copy()
-            d, dd = penetration(y[:n], y[n:], fint[contact[k_ev], 1], fint[contact[k_ev], 2], freal[contact[k_ev]])
+            d, dd = penetration(
+                y[:n], y[n:], fint[contact[k_ev], 1], fint[contact[k_ev], 2], freal[contact[k_ev]]
+            )
             if mem[contact[k_ev], IN_CONTACT] < 0.5:
                 mem[contact[k_ev], IN_CONTACT] = 1.0
                 mem[contact[k_ev], ONSET_VEL] = max(dd, freal[contact[k_ev], V_MIN])

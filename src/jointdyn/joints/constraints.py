@@ -156,8 +156,12 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
                 J[r, ki + 1] += -ny
                 J[r, ki + 2] += (bnx * dx + bny * dy) - (-nx * siy + ny * six)
             # γ = φ̇_i² nᵀd − 2φ̇_i (B_i n')ᵀ ḋ + φ̇_j² nᵀ s_j − φ̇_i² nᵀ s_i  [T6]
-            gam[r] = (wi * wi * (nx * dx + ny * dy) - 2.0 * wi * (bnx * ddx + bny * ddy)
-                      + wj * wj * (nx * sjx + ny * sjy) - wi * wi * (nx * six + ny * siy))
+            gam[r] = (
+                wi * wi * (nx * dx + ny * dy)
+                - 2.0 * wi * (bnx * ddx + bny * ddy)
+                + wj * wj * (nx * sjx + ny * sjy)
+                - wi * wi * (nx * six + ny * siy)
+            )
             Phi[r + 1] = phij - phii - creal[k, 6]
             Phit[r + 1] = 0.0
             gam[r + 1] = 0.0

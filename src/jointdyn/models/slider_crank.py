@@ -33,10 +33,18 @@ RESTITUTION = 0.9  # [-]
 JOINTS = ("perfect", "dry", "ott", "alshaer2005", "short", "finite")
 
 
-def slider_crank(joint: str = "perfect", speed: float = SPEED, gravity: float = 9.81,
-                 clearance: float = BEARING_RADIUS - JOURNAL_RADIUS, viscosity: float = VISCOSITY,
-                 length: float = BEARING_LENGTH, restitution: float = RESTITUTION,
-                 friction=None, contact=None, asperity_height: float = 0.0) -> Model:
+def slider_crank(
+    joint: str = "perfect",
+    speed: float = SPEED,
+    gravity: float = 9.81,
+    clearance: float = BEARING_RADIUS - JOURNAL_RADIUS,
+    viscosity: float = VISCOSITY,
+    length: float = BEARING_LENGTH,
+    restitution: float = RESTITUTION,
+    friction=None,
+    contact=None,
+    asperity_height: float = 0.0,
+) -> Model:
     """Build the benchmark slider-crank with the rod–slider joint of kind ``joint``.
 
     joint: ``perfect`` (ideal revolute), ``dry`` (clearance joint, Lankarani–Nikravesh,
@@ -52,12 +60,26 @@ def slider_crank(joint: str = "perfect", speed: float = SPEED, gravity: float = 
     r, l = CRANK_LENGTH, ROD_LENGTH
     m = Model(f"slider-crank ({joint})", gravity=(0.0, -gravity))
     m.add_ground_point("O", (0.0, 0.0))
-    m.add_body("crank", CRANK_MASS, CRANK_INERTIA, position=(r / 2, 0.0), angle=0.0,
-               velocity=(0.0, speed * r / 2, speed), points={"O": (-r / 2, 0.0), "A": (r / 2, 0.0)})
-    m.add_body("rod", ROD_MASS, ROD_INERTIA, position=(r + l / 2, 0.0), angle=0.0,
-               points={"A": (-l / 2, 0.0), "B": (l / 2, 0.0)})
-    m.add_body("slider", SLIDER_MASS, SLIDER_INERTIA, position=(r + l, 0.0), angle=0.0,
-               points={"B": (0.0, 0.0)})
+    m.add_body(
+        "crank",
+        CRANK_MASS,
+        CRANK_INERTIA,
+        position=(r / 2, 0.0),
+        angle=0.0,
+        velocity=(0.0, speed * r / 2, speed),
+        points={"O": (-r / 2, 0.0), "A": (r / 2, 0.0)},
+    )
+    m.add_body(
+        "rod",
+        ROD_MASS,
+        ROD_INERTIA,
+        position=(r + l / 2, 0.0),
+        angle=0.0,
+        points={"A": (-l / 2, 0.0), "B": (l / 2, 0.0)},
+    )
+    m.add_body(
+        "slider", SLIDER_MASS, SLIDER_INERTIA, position=(r + l, 0.0), angle=0.0, points={"B": (0.0, 0.0)}
+    )
     m.add("crank_pivot", Revolute("ground", "O", "crank", "O"))
     m.add("drive", AngleDriver("ground", "crank", phi0=0.0, omega=speed))
     m.add("crank_pin", Revolute("crank", "A", "rod", "A"))
@@ -71,10 +93,26 @@ def slider_crank(joint: str = "perfect", speed: float = SPEED, gravity: float = 
     if joint == "dry":
         K = journal_bearing_stiffness(rb, JOURNAL_RADIUS, YOUNG, POISSON, YOUNG, POISSON)
         law = LankaraniNikravesh(stiffness=K, exponent=1.5, restitution=restitution)
-        m.add("piston_pin", ClearanceJoint("rod", "B", "slider", "B", rb, JOURNAL_RADIUS,
-                                           contact=law, friction=friction))
+        m.add(
+            "piston_pin",
+            ClearanceJoint("rod", "B", "slider", "B", rb, JOURNAL_RADIUS, contact=law, friction=friction),
+        )
     else:
-        m.add("piston_pin", JournalBearing("rod", "B", "slider", "B", rb, JOURNAL_RADIUS, length,
-                                           viscosity, film=joint, contact=contact, friction=friction,
-                                           asperity_height=asperity_height))
+        m.add(
+            "piston_pin",
+            JournalBearing(
+                "rod",
+                "B",
+                "slider",
+                "B",
+                rb,
+                JOURNAL_RADIUS,
+                length,
+                viscosity,
+                film=joint,
+                contact=contact,
+                friction=friction,
+                asperity_height=asperity_height,
+            ),
+        )
     return m
