@@ -12,6 +12,7 @@ points are given in world coordinates.
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
+from typing import Any
 
 import numpy as np
 
@@ -70,11 +71,11 @@ class Model:
 
     def __init__(self, name: str = "model", gravity: tuple[float, float] = (0.0, -9.81)):
         self.name = name
-        self.gravity = tuple(float(g) for g in gravity)
+        self.gravity: tuple[float, float] = (float(gravity[0]), float(gravity[1]))
         """gravitational acceleration vector [m/s²]"""
         self.bodies: dict[str, Body] = {}
         self.ground_points: dict[str, tuple[float, float]] = {}
-        self.items: dict[str, object] = {}
+        self.items: dict[str, Any] = {}
 
     # -- building -------------------------------------------------------------------------
     def add_body(
