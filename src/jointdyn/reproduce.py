@@ -130,6 +130,19 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     fig.tight_layout()
     figs["moment_overlay.png"] = _png(fig)
     plt.close(fig)
+    beyond = [n for n in runs if n not in names]
+    if beyond:
+        fig, ax = plt.subplots(figsize=(8, 4.2))
+        for n in ["perfect"] + beyond if "perfect" in runs else beyond:
+            cols = runs[n][1]
+            s = _last_rev(cols, revs)
+            ang = cols["crank_angle"][s] - cols["crank_angle"][s][0]
+            plots.moment_vs_angle(ang, cols["crank_moment"][s], ax=ax, label=n)
+        ax.set_title("beyond the paper: clearance and viscosity (last revolution)")
+        ax.legend(fontsize=8)
+        fig.tight_layout()
+        figs["moment_beyond.png"] = _png(fig)
+        plt.close(fig)
     for n in [n for n in runs if "ex_over_c" in runs[n][1]]:
         fig, ax = plt.subplots(figsize=(4.6, 4.6))
         cols = runs[n][1]
@@ -291,6 +304,7 @@ of spec §3.3; dry contact Lankarani–Nikravesh (T50–T69).</p>
 <h2>Comparison with the paper's statements</h2><ul>{disc}</ul>
 <h2>Beyond the paper</h2>
 <p>Cases: {html.escape(", ".join(beyond) or "none in this run")}.</p>
+{img("moment_beyond.png", 800)}
 {"".join(img(f"orbit_{n}.png", 360) for n in beyond if f"orbit_{n}.png" in figs)}
 <h2>Parameters</h2><table>{par}</table>
 </body></html>"""
