@@ -502,7 +502,8 @@ def test_no_nan_down_to_one_minus_xi_1e_12(model):
 
 
 def test_registry_and_dispatcher():
-    assert FILM_MODELS == {"ott": Ott, "alshaer2005": Alshaer2005}
+    assert FILM_MODELS["ott"] is Ott and FILM_MODELS["alshaer2005"] is Alshaer2005
+    assert len({m.code for m in FILM_MODELS.values()}) == len(FILM_MODELS)  # codes are unique
     assert (Ott.code, Alshaer2005.code) == (OTT, ALSHAER2005) == (0, 1)
     assert Ott.tag.startswith("T") and Alshaer2005.tag.startswith("T")
     args = (0.5, 20.0, 0.5 * 323.6, MU, R, L, 5e-4, TABLE)

@@ -27,6 +27,7 @@ from numba import njit
 
 OTT = 0
 ALSHAER2005 = 1
+SHORT = 2
 
 
 @njit(cache=True)
@@ -99,6 +100,49 @@ def ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 
 @njit(cache=True)
+def _sommerfeld_angle(xi, sw, th):
+    """Sommerfeld variable δ(θ): 1 + ξcosθ = (1−ξ²)/(1 − ξcosδ), principal value [T35]."""
+    return math.atan2(sw * math.sin(th), math.cos(th) + xi)
+
+
+@njit(cache=True)
+def short_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+    """Short-bearing (Ocvirk) π-film [T35]: p = −(3μ/h³)(L²/4 − z²)·g(θ)/c², g = 2ξ̇cosθ − ξΩ sinθ,
+    kept where g < 0 (a half film θ ∈ (π/2 − β, 3π/2 − β), β = atan2(ξΩ, 2ξ̇)); with
+    k_s = μRL³/(2c²) and w = 1 + ξcosθ:
+
+    F_r = −k_s[2ξ̇·I_cc − ξΩ·I_sc],  F_t = −k_s[2ξ̇·I_sc − ξΩ·I_ss],
+    I_sc = [−cos²θ/(2w²)], I_ss = [(δ/2 − sin2δ/4)]/(1−ξ²)^{3/2},
+    I_cc = [δ(1+ξ²/2) − 2ξ sinδ + ξ² sin2δ/4]/(1−ξ²)^{5/2} − I_ss over the arc (δ unwrapped).
+    Steady limit (ξ̇ = 0): F_r = −μΩRL³ξ²/(c²(1−ξ²)²), F_t = πμΩRL³ξ/(4c²(1−ξ²)^{3/2})
+    (Hamrock, *Fundamentals of Fluid Film Lubrication*, short-bearing theory)."""
+    a = 2.0 * xi_dot
+    b = xi_Omega
+    if a == 0.0 and b == 0.0:
+        return 0.0, 0.0
+    ks = mu * R * L * L * L / (2.0 * c * c)
+    beta = math.atan2(b, a)
+    t0 = 0.5 * math.pi - beta
+    t1 = t0 + math.pi
+    w1 = (1.0 - xi) * (1.0 + xi)
+    sw = math.sqrt(w1)
+    d0 = _sommerfeld_angle(xi, sw, t0)
+    dd = (_sommerfeld_angle(xi, sw, t1) - d0) % (2.0 * math.pi)
+    d1 = d0 + dd
+    c0 = math.cos(t0)
+    c1 = math.cos(t1)
+    isc = -c1 * c1 / (2.0 * (1.0 + xi * c1) ** 2) + c0 * c0 / (2.0 * (1.0 + xi * c0) ** 2)
+    iss = ((d1 - d0) / 2.0 - (math.sin(2.0 * d1) - math.sin(2.0 * d0)) / 4.0) / (w1 * sw)
+    j3 = (
+        (d1 - d0) * (1.0 + 0.5 * xi * xi)
+        - 2.0 * xi * (math.sin(d1) - math.sin(d0))
+        + 0.25 * xi * xi * (math.sin(2.0 * d1) - math.sin(2.0 * d0))
+    ) / (w1 * w1 * sw)
+    icc = j3 - iss
+    return -ks * (a * icc - b * isc), -ks * (a * isc - b * iss)
+
+
+@njit(cache=True)
 def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, table):
     """Film force (F_r, F_t) [N] of the model ``code`` (OTT, ALSHAER2005; see ``FILM_MODELS``);
     (nan, nan) for an unknown code. Arguments as in the module docstring."""
@@ -106,7 +150,9 @@ def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, table):
         return ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
     elif code == ALSHAER2005:
         return pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
-    else:  # codes 2 (short) and 3 (finite) are added by their kernels' authors
+    elif code == SHORT:
+        return short_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+    else:
         return math.nan, math.nan
 
 
@@ -129,7 +175,16 @@ class Alshaer2005:
     tag: ClassVar[str] = "T21"
 
 
-FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005}
+@dataclass(frozen=True)
+class Short:
+    """Short-bearing (Ocvirk) π-film: valid for L/D ≲ 0.5 (a PhysicsWarning is issued beyond) [T35]."""
+
+    code: ClassVar[int] = SHORT
+    tag: ClassVar[str] = "T35"
+    max_length_over_diameter: ClassVar[float] = 0.5
+
+
+FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005, "short": Short}
 
 _UNITS = {
     "xi": "-",

@@ -177,6 +177,19 @@ class JournalBearing:
         )
         if self.film not in FILM_MODELS:
             raise ValueError(f"{o}.film = {self.film!r}: unknown film model; valid: {sorted(FILM_MODELS)}")
+        limit = getattr(FILM_MODELS[self.film], "max_length_over_diameter", math.inf)
+        ld = self.length / (2.0 * self.journal_radius)
+        if ld > limit:
+            import warnings
+
+            from ..errors import PhysicsWarning
+
+            warnings.warn(
+                f"{o}: film model {self.film!r} is meant for L/D ≤ {limit:g}; this bearing has "
+                f"L/D = {ld:.3g}",
+                PhysicsWarning,
+                stacklevel=2,
+            )
 
     def int_params(self):
         return (
