@@ -109,9 +109,9 @@ def _blocks(text: str, lang: str) -> list[str]:
 @pytest.mark.slow
 def test_getting_started_commands_in_a_fresh_venv(tmp_path):
     """Follow docs/getting-started.md literally: a copy of the working tree (as a fresh clone
-    would be, with a cold numba cache), a new virtual environment, then every ``bash`` block of
-    the page from the copy's root except the test command, then every ``python`` block.
-    Needs PyPI (the dependencies are installed into the new environment); a few minutes."""
+    would be), a new virtual environment, an empty numba cache (as on a fresh machine), then
+    every ``bash`` block of the page from the copy's root except the test command, then every
+    ``python`` block. Needs PyPI (the dependencies are installed into the new environment)."""
     page = (ROOT / "docs" / "getting-started.md").read_text(encoding="utf-8")
     commands = [c.strip() for c in _blocks(page, "bash") if "pytest" not in c]
     assert commands[0].startswith("python -m pip install -e .")  # the first of the two commands
@@ -124,6 +124,7 @@ def test_getting_started_commands_in_a_fresh_venv(tmp_path):
     venv.EnvBuilder(with_pip=True).create(env_dir)
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV")}
     env.update(PATH=f"{env_dir / 'bin'}{os.pathsep}{env['PATH']}", VIRTUAL_ENV=str(env_dir), MPLBACKEND="Agg")
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "numba-cache")  # cold: compile everything, as on a new machine
 
     for cmd in commands:
         proc = subprocess.run(["bash", "-e", "-c", cmd], cwd=clone, env=env, capture_output=True, text=True)
