@@ -27,7 +27,7 @@ from jointdyn.forces.film_models import (
     pi_film_force,
 )
 
-TABLE = np.zeros((1, 1, 1))
+TABLE = np.zeros((1, 2))  # film kernels take a 2-D table slice (used by tabulated models)
 KERNELS = {"ott": ott_force, "alshaer2005": pi_film_force}
 
 # ---- spec §8: parameters, states (§8.1) and reference values (§8.2, §8.2b, §8.3, §8.3b) --------

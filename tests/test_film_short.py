@@ -14,7 +14,7 @@ from jointdyn.forces.film_models import short_force
 from jointdyn.forces.journal import JournalBearing
 from jointdyn.model import Model
 
-TAB = np.zeros((1, 1, 1))
+TAB = np.zeros((1, 2))
 MU, R, L, C = 0.4, 0.01, 0.005, 5e-4  # L/D = 0.25
 
 

@@ -12,12 +12,14 @@ from __future__ import annotations
 
 from numba import njit
 
+from .film_models import FILM_MODELS
 from .journal import (
     CONTACT,
     IN_CONTACT,
     JOURNAL,
     ONSET_TOL,
     ONSET_VEL,
+    TABLE,
     V_MIN,
     ClearanceJoint,
     JournalBearing,
@@ -135,6 +137,9 @@ def element_tables(elements, body_index, point_of):
             continue
         ints = e.int_params() if hasattr(e, "int_params") else ()
         fint[k, 3 : 3 + len(ints)] = ints
+        if isinstance(e, JournalBearing) and hasattr(FILM_MODELS[e.film], "table"):
+            tabs.append(FILM_MODELS[e.film].table(e.length, e.journal_radius))
+            fint[k, TABLE] = len(tabs) - 1
         freal[k, 0:2] = point_of(e.body_i, e.point_i)
         p = e.params()
         freal[k, 4 : 4 + len(p)] = p

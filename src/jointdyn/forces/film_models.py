@@ -25,9 +25,12 @@ from typing import ClassVar
 import numpy as np
 from numba import njit
 
+from .film_finite import finite_force
+
 OTT = 0
 ALSHAER2005 = 1
 SHORT = 2
+FINITE = 3
 
 
 @njit(cache=True)
@@ -152,6 +155,8 @@ def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, table):
         return pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
     elif code == SHORT:
         return short_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+    elif code == FINITE:
+        return finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
     else:
         return math.nan, math.nan
 
@@ -184,7 +189,23 @@ class Short:
     max_length_over_diameter: ClassVar[float] = 0.5
 
 
-FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005, "short": Short}
+@dataclass(frozen=True)
+class Finite:
+    """Finite-length bearing: 2-D Reynolds by finite differences with Gümbel cavitation,
+    tabulated per L/D (built once, cached on disk) [T36–T38]."""
+
+    code: ClassVar[int] = FINITE
+    tag: ClassVar[str] = "T36"
+
+    @staticmethod
+    def table(length: float, journal_radius: float) -> np.ndarray:
+        """The force table of a bearing of this length and journal radius [m, m]."""
+        from .film_finite import build_table
+
+        return build_table(length / (2.0 * journal_radius))
+
+
+FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005, "short": Short, "finite": Finite}
 
 _UNITS = {
     "xi": "-",
@@ -198,7 +219,7 @@ _UNITS = {
     "radius": "m",
     "clearance": "m",
 }
-_NO_TABLE = np.zeros((1, 1, 1))
+_NO_TABLE = np.zeros((1, 2))
 
 
 def film_forces(
@@ -260,7 +281,14 @@ def film_forces(
     xi_om = x * (arr["omega_journal"] + arr["omega_bearing"] - 2.0 * arr["gamma_dot"])  # [T20]
     fr = np.empty(x.shape)
     ft = np.empty(x.shape)
+    tables = {}
+    if hasattr(FILM_MODELS[model], "table"):  # one table per distinct (length, radius)
+        for i in range(x.size):
+            key = (float(arr["length"].flat[i]), float(arr["radius"].flat[i]))
+            if key not in tables:
+                tables[key] = FILM_MODELS[model].table(*key)
     for i in range(x.size):
+        tab = tables.get((float(arr["length"].flat[i]), float(arr["radius"].flat[i])), _NO_TABLE)
         fr.flat[i], ft.flat[i] = film_force(
             code,
             x.flat[i],
@@ -270,7 +298,7 @@ def film_forces(
             arr["radius"].flat[i],
             arr["length"].flat[i],
             arr["clearance"].flat[i],
-            _NO_TABLE,
+            tab,
         )
     g = arr["gamma"]
     return {

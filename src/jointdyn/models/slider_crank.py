@@ -30,7 +30,7 @@ VISCOSITY = 0.4  # [Pa·s]
 YOUNG, POISSON = 207e9, 0.3  # [Pa], [-]
 RESTITUTION = 0.9  # [-]
 
-JOINTS = ("perfect", "dry", "ott", "alshaer2005", "short")
+JOINTS = ("perfect", "dry", "ott", "alshaer2005", "short", "finite")
 
 
 def slider_crank(
