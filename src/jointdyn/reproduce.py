@@ -46,6 +46,7 @@ BEYOND_CASES = (
     Case("alshaer2005_c0.05mm", "alshaer2005", "π-film, c = 0.05 mm", {"clearance": 5e-5}),
     Case("alshaer2005_mu0.1", "alshaer2005", "π-film, μ = 0.1 Pa·s", {"viscosity": 0.1}),
     Case("alshaer2005_mu1.0", "alshaer2005", "π-film, μ = 1.0 Pa·s", {"viscosity": 1.0}),
+    Case("finite", "finite", "finite-length (2-D Reynolds, Gümbel), L/D = 2, c = 0.5 mm"),
 )
 
 SUMMARY_COLUMNS = (
