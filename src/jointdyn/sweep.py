@@ -159,7 +159,9 @@ def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
             from .config import load_model
             from .simulate import simulate
 
-            overrides = [f"{k}={json.dumps(v)}" for k, v in params.items()]
+            # every [base] key besides file/model and every swept parameter is a dotted override
+            extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
+            overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
             model, cfg = load_model(merged["file"], overrides)
             res = simulate(model.compile(), cfg)
             metrics = {"rhs_evaluations": res.stats["rhs_evaluations"]}

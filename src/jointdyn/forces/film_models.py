@@ -1,4 +1,5 @@
-"""Long-bearing film models (compiled scalar kernels) and their registry.
+"""Film models (compiled scalar kernels) and their registry ``FILM_MODELS``: long-bearing Ott and
+π-film (alshaer2005), short-bearing π-film, and the tabulated finite-length bearing.
 
 All kernels share one signature ``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, table) -> (Fr, Ft)``:
 
@@ -10,7 +11,7 @@ All kernels share one signature ``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, tabl
 * R         journal radius [m]
 * L         bearing length [m]
 * c         radial clearance [m]
-* table     float64 3-D array used only by tabulated models (ignored here) [-]
+* table     float64 2-D array (rows, 2) used only by tabulated models (``finite``) [-]
 
 F_r is the film force on the journal along u = e/|e| (bearing centre → journal centre), F_t along
 t = ẑ × u [N] (spec §1). Theory: docs/theory.md [T20–T39].
