@@ -61,3 +61,18 @@ def accept_hooks(t, y, mem, P, do_project):
     n = y.shape[0] // 2
     # non-zero codes from the elements (≥ 10, e.g. FILM_BREAKDOWN + element) pass through
     return advance_memory(t, y[:n], y[n:], mem, P[4], P[5], P[6])
+
+
+@njit(cache=True)
+def start_outputs(y0, mem0, t0, t_out):
+    """Output buffers (Y, MEM) with every sample at or before t0 filled with the initial state;
+    returns (Y, MEM, index of the next sample)."""
+    nout = t_out.shape[0]
+    Y = np.zeros((nout, y0.shape[0]))
+    MEM = np.zeros((nout, mem0.shape[0], mem0.shape[1]))
+    iout = 0
+    while iout < nout and t_out[iout] <= t0:
+        Y[iout] = y0
+        MEM[iout] = mem0
+        iout += 1
+    return Y, MEM, iout

@@ -13,7 +13,16 @@ from numba import njit
 
 from ..dynamics import rhs
 from ..forces.elements import onset_fraction, step_limit
-from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, error_norm, write_dense
+from .common import (
+    MAX_STEPS,
+    OK,
+    RHS_FAILED,
+    STEP_TOO_SMALL,
+    accept_hooks,
+    error_norm,
+    start_outputs,
+    write_dense,
+)
 
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
 A21 = 1 / 5
@@ -34,8 +43,7 @@ def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
     nn = y0.shape[0]
     n = nn // 2
     nout = t_out.shape[0]
-    Y = np.zeros((nout, nn))
-    MEM = np.zeros((nout, mem0.shape[0], mem0.shape[1]))
+    Y, MEM, iout = start_outputs(y0, mem0, t0, t_out)
     stats = np.zeros(4, dtype=np.int64)
     h = h0 if h0 > 0 else 1e-6 * max(1.0, abs(t_out[-1] - t0))
     h_prop = h
@@ -43,11 +51,6 @@ def dopri5(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
     y = y0.copy()
     t = t0
     t_end = t_out[-1]
-    iout = 0
-    while iout < nout and t_out[iout] <= t0:
-        Y[iout] = y
-        MEM[iout] = mem
-        iout += 1
     k1 = np.empty(nn)
     k2 = np.empty(nn)
     k3 = np.empty(nn)
