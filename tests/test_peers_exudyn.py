@@ -12,9 +12,15 @@ import pytest
 
 pytestmark = pytest.mark.slow
 
-pytest.importorskip(
-    "exudyn", reason="exudyn not installed: pip install -e .[peers] to run the Exudyn peer-benchmark tests"
-)
+
+@pytest.fixture(autouse=True)
+def _needs_exudyn():
+    """Only the slow tier runs these; they need the optional [peers] extra."""
+    pytest.importorskip(
+        "exudyn",
+        reason="exudyn not installed: pip install -e .[peers] to run the Exudyn peer-benchmark tests",
+    )
+
 
 ROOT = Path(__file__).resolve().parents[1]
 if str(ROOT) not in sys.path:
