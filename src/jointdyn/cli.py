@@ -333,13 +333,22 @@ def film_force_cmd(
 
 @app.command("list")
 def list_registries():
-    """Show the registries: constraints, force elements, solvers, models."""
+    """Show the registries: constraints, force elements, film/contact/friction laws, solvers, models."""
+    from .forces.contact_laws import CONTACT_LAWS
+    from .forces.film_models import FILM_MODELS
+    from .forces.friction_laws import FRICTION_LAWS
     from .forces.elements import FORCE_ELEMENTS
     from .integrators import SOLVERS
     from .joints.constraints import CONSTRAINTS
     from .models.slider_crank import JOINTS
 
-    for title, reg in (("constraints", CONSTRAINTS), ("force elements", FORCE_ELEMENTS)):
+    for title, reg in (
+        ("constraints", CONSTRAINTS),
+        ("force elements", FORCE_ELEMENTS),
+        ("film models", FILM_MODELS),
+        ("contact laws", CONTACT_LAWS),
+        ("friction laws", FRICTION_LAWS),
+    ):
         tab = Table(title=title)
         tab.add_column("name")
         tab.add_column("description")
