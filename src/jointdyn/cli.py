@@ -335,9 +335,9 @@ def film_force_cmd(
 def list_registries():
     """Show the registries: constraints, force elements, film/contact/friction laws, solvers, models."""
     from .forces.contact_laws import CONTACT_LAWS
+    from .forces.elements import FORCE_ELEMENTS
     from .forces.film_models import FILM_MODELS
     from .forces.friction_laws import FRICTION_LAWS
-    from .forces.elements import FORCE_ELEMENTS
     from .integrators import SOLVERS
     from .joints.constraints import CONSTRAINTS
     from .models.slider_crank import JOINTS
