@@ -74,7 +74,7 @@ def unit_forces(th, zeta, PA, PB, psi):
 
 
 def build_table(
-    L_over_D: float, n_xi: int = 32, n_psi: int = 73, n_theta: int = 180, n_zeta: int = 24, cache: bool = True
+    L_over_D: float, n_xi: int = 40, n_psi: int = 97, n_theta: int = 180, n_zeta: int = 24, cache: bool = True
 ) -> np.ndarray:
     """Table for the ``finite`` kernel, shape (2 + n_xi·n_psi, 2): row 0 = (n_xi, n_psi),
     row 1 = (ξ_max, 0), then (f_r, f_t)·(1−ξ²)^{3/2} row-major in (ξ, ψ) [T37]. Cached on disk
@@ -110,10 +110,18 @@ def build_table(
 
 
 @njit(cache=True)
+def _catmull_rom(p0, p1, p2, p3, w):
+    """Cubic Catmull–Rom interpolation between p1 and p2 at w ∈ [0, 1] (C¹ across cells)."""
+    return p1 + 0.5 * w * (
+        p2 - p0 + w * (2.0 * p0 - 5.0 * p1 + 4.0 * p2 - p3 + w * (3.0 * (p1 - p2) + p3 - p0))
+    )
+
+
+@njit(cache=True)
 def finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
-    """Tabulated finite-length film force [T37]: F = (6μR⁴/c²)·ρ·f(ξ, ψ), bilinear in
-    (u = −ln(1−ξ), ψ) on f·(1−ξ²)^{3/2}; for ξ > ξ_max the table edge is used with the
-    (1−ξ²)^{-3/2} scaling (an extrapolation, see docs/theory.md)."""
+    """Tabulated finite-length film force [T37]: F = (6μR⁴/c²)·ρ·f(ξ, ψ), bicubic (Catmull–Rom,
+    C¹; periodic in ψ, end-clamped in u) in (u = −ln(1−ξ), ψ) on f·(1−ξ²)^{3/2}; for ξ > ξ_max
+    the table edge is used with the (1−ξ²)^{-3/2} scaling (an extrapolation, see docs/theory.md)."""
     A = xi_dot
     B = xi_Omega / (2.0 + xi * xi)
     rho = math.sqrt(A * A + B * B)
@@ -131,13 +139,21 @@ def finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
     sp = (psi + math.pi) / (2.0 * math.pi) * (n_psi - 1)
     b = min(int(sp), n_psi - 2)
     wb = sp - b
-    fr = 0.0
-    ft = 0.0
-    for da in range(2):
-        for db in range(2):
-            w = (wa if da else 1.0 - wa) * (wb if db else 1.0 - wb)
-            row = 2 + (a + da) * n_psi + b + db
-            fr += w * table[row, 0]
-            ft += w * table[row, 1]
+    out = np.zeros(2)
+    for comp in range(2):
+        col = np.zeros(4)
+        for i in range(4):
+            ai = min(max(a - 1 + i, 0), n_xi - 1)
+            v = np.zeros(4)
+            for j in range(4):
+                # ψ grid includes both −π and π (same value): period n_psi − 1
+                bj = (b - 1 + j) % (n_psi - 1)
+                v[j] = table[2 + ai * n_psi + bj, comp]
+            col[i] = _catmull_rom(v[0], v[1], v[2], v[3], wb)
+        if a == 0:  # linear ghost values beyond the ξ ends instead of repeating the edge
+            col[0] = 2.0 * col[1] - col[2]
+        if a + 2 >= n_xi - 1:
+            col[3] = 2.0 * col[2] - col[1]
+        out[comp] = _catmull_rom(col[0], col[1], col[2], col[3], wa)
     s = 6.0 * mu * R * R * R * R / (c * c) * rho / ((1.0 - xi) * (1.0 + xi)) ** 1.5
-    return fr * s, ft * s
+    return out[0] * s, out[1] * s
