@@ -7,7 +7,7 @@ p = (6μR²/c²)(A·P_A + B·P_B) with A = ξ̇, B = ξΩ/(2+ξ²), S_A = 2 cos 
 (spec §2.1 with the axial term). Gümbel (half-Sommerfeld) cavitation clips p < 0, so the force is
 positively homogeneous of degree 1 in (A, B): **F = (6μR⁴/c²)·ρ·f(ξ, ψ)**, ρ = √(A²+B²),
 ψ = atan2(A, B), f = ∫∫ max(sin ψ P_A + cos ψ P_B, 0)(cos θ, sin θ) dθ dζ [T36]. The table holds
-f·(1−ξ²)^{3/2} on a grid uniform in u = −ln(1−ξ) and ψ, interpolated bilinearly [T37].
+f·(1−ξ²)^{3/2} on a grid uniform in u = −ln(1−ξ) and ψ, interpolated bicubically [T37].
 """
 
 from __future__ import annotations
