@@ -198,6 +198,13 @@ def write_csvs(out: Path, runs: dict) -> None:
                 w.writerow([_fmt(v) for v in row])
 
 
+def _short(v):
+    """5 significant digits for the report table (the CSV keeps 10)."""
+    if isinstance(v, (float, np.floating)):
+        return "" if math.isnan(v) else f"{v:.5g}"
+    return str(v)
+
+
 def _fmt(v):
     if isinstance(v, (float, np.floating)):
         return "" if math.isnan(v) else f"{v:.10g}"
@@ -277,7 +284,7 @@ def report_html(runs: dict, figs: dict, revs: float, params: dict) -> str:
         return f"<figure>{img_tag}<figcaption>{name}</figcaption></figure>"
 
     rows = "".join(
-        "<tr>" + "".join(f"<td>{html.escape(_fmt(s.get(c, '')))}</td>" for c in SUMMARY_COLUMNS) + "</tr>"
+        "<tr>" + "".join(f"<td>{html.escape(_short(s.get(c, '')))}</td>" for c in SUMMARY_COLUMNS) + "</tr>"
         for _, (_, _, s, _) in runs.items()
     )
     head = "".join(f"<th>{c}</th>" for c in SUMMARY_COLUMNS)
