@@ -57,7 +57,7 @@ TOP_LEVEL = ("model", "ground", "bodies", "joints", "elements", "simulation")
 #: fields that hold a law *instance*: written as ``{ law = "<name>", ...fields }``
 LAW_FIELDS = {"contact": CONTACT_LAWS, "friction": FRICTION_LAWS}
 #: string fields that name an entry of a registry
-NAME_FIELDS = {"film": FILM_MODELS, "solver": SOLVERS}
+NAME_FIELDS = {"film": FILM_MODELS, "solver": {"auto": None, **SOLVERS}}
 _REQUIRED = object()
 
 

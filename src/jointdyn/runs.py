@@ -16,9 +16,6 @@ from . import post
 from .models import slider_crank as sc
 from .simulate import SimConfig, simulate
 
-#: default integrator per joint kind (explicit where non-stiff, Rosenbrock for film/contact)
-DEFAULT_SOLVER = {"perfect": "dopri5", "dry": "dopri5"}
-
 
 def slider_crank_config(
     joint: str,
@@ -36,7 +33,7 @@ def slider_crank_config(
     return SimConfig(
         t_end=t_end,
         n_out=int(round(revs * samples_per_rev)) + 1,
-        solver=solver or DEFAULT_SOLVER.get(joint, "rodas4"),
+        solver=solver or "auto",
         rtol=rtol,
         atol=atol,
     )

@@ -68,8 +68,9 @@ class SimConfig:
     """end time [s], > 0"""
     n_out: int = 1001
     """number of equally spaced output samples on [0, t_end] (≥ 2)"""
-    solver: str = "dopri5"
-    """a name in ``jointdyn.integrators.SOLVERS``"""
+    solver: str = "auto"
+    """a name in ``jointdyn.integrators.SOLVERS``, or ``"auto"``: ``rodas4`` when the system has a
+    lubricated journal bearing (stiff film), else ``dopri5``"""
     rtol: float = 1e-8
     """relative tolerance [-]"""
     atol: float = 1e-10
@@ -88,8 +89,10 @@ class SimConfig:
             raise ValueError(f"SimConfig.t_end = {self.t_end!r} [s]: must be finite and > 0")
         if self.n_out < 2:
             raise ValueError(f"SimConfig.n_out = {self.n_out!r} [-]: must be ≥ 2")
-        if self.solver not in SOLVERS:
-            raise ValueError(f"SimConfig.solver = {self.solver!r}: unknown; valid: {sorted(SOLVERS)}")
+        if self.solver not in SOLVERS and self.solver != "auto":
+            raise ValueError(
+                f"SimConfig.solver = {self.solver!r}: unknown; valid: {['auto', *sorted(SOLVERS)]}"
+            )
         for name in ("rtol", "atol"):
             v = getattr(self, name)
             if not (math.isfinite(v) and 0 < v < 1):
@@ -100,6 +103,15 @@ class SimConfig:
             raise ValueError(f"SimConfig.baumgarte = {self.baumgarte!r} [1/s]: must be ≥ 0")
 
 
+def resolve_solver(system: System, name: str) -> str:
+    """``"auto"`` -> ``rodas4`` if a journal bearing carries a film (stiff), else ``dopri5``."""
+    if name != "auto":
+        return name
+    from .forces.journal import JournalBearing
+
+    return "rodas4" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
+
+
 def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) -> Results:
     """Integrate ``system`` from its assembled initial state over [0, config.t_end].
 
@@ -108,7 +120,8 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
     Raises :class:`~jointdyn.errors.SimulationError` carrying the partial results if the
     integration fails.
     """
-    runner, projects, _ = SOLVERS[config.solver]
+    solver = resolve_solver(system, config.solver)
+    runner, projects, _ = SOLVERS[solver]
     a = config.baumgarte if config.baumgarte is not None else (0.0 if projects else 1000.0)
     P = system.packed(a)
     t_out = np.linspace(0.0, config.t_end, config.n_out)
@@ -168,13 +181,13 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
             "jacobians": int(stats[3]),
         },
         wall_time=wall,
-        config=asdict(config) | {"baumgarte": a},
+        config=asdict(config) | {"baumgarte": a, "solver": solver},
         status=int(status),
     )
     if status != OK:
         raise SimulationError(
             f"simulation of {system.name!r} failed at t = {t_reached:.9g} s "
-            f"with solver {config.solver!r}: {_message(system, status)}; "
+            f"with solver {solver!r}: {_message(system, status)}; "
             f"{nw} of {len(t_out)} output samples were computed (kept in "
             f".results){_element_hint(system, P, t_reached, y_fin, mem_fin)}",
             t_reached,
