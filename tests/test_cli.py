@@ -152,3 +152,13 @@ def test_run_model_file_with_overrides(tmp_path):
     assert (out / "results.nc").exists() and xr.load_dataset(out / "results.nc").sizes["time"] == 31
     r = runner.invoke(app, ["run", str(ex), "--out", str(out), "--set", "bodies.crank.mass=-1"])
     assert r.exit_code == 2 and "bodies.crank.mass" in r.output and "kg" in r.output
+
+
+def test_animate_mp4(tmp_path):
+    """MP4 through the ffmpeg binary of the [video] extra (installed with [dev])."""
+    out = tmp_path / "run"
+    assert runner.invoke(app, ["run", "slider-crank", "--revs", "0.1", "--out", str(out)]).exit_code == 0
+    mp4 = tmp_path / "a.mp4"
+    r = runner.invoke(app, ["animate", str(out), "--out", str(mp4), "--frames", "6"])
+    assert r.exit_code == 0, r.output
+    assert mp4.read_bytes()[4:8] == b"ftyp"  # an MP4 container

@@ -90,7 +90,18 @@ def animate(results_file, out, frames: int = 120, fps: int = 20):
 
     anim = FuncAnimation(fig, draw, frames=len(idx), blit=False)
     out = Path(out)
-    writer = FFMpegWriter(fps=fps) if out.suffix == ".mp4" else PillowWriter(fps=fps)
+    if out.suffix == ".mp4":
+        try:  # the [video] extra ships an ffmpeg binary inside its wheel
+            import imageio_ffmpeg
+
+            matplotlib.rcParams["animation.ffmpeg_path"] = imageio_ffmpeg.get_ffmpeg_exe()
+        except ImportError:
+            if not FFMpegWriter.isAvailable():
+                plt.close(fig)
+                raise RuntimeError("MP4 needs ffmpeg: pip install -e '.[video]' (or write a .gif)") from None
+        writer = FFMpegWriter(fps=fps)
+    else:
+        writer = PillowWriter(fps=fps)
     anim.save(out, writer=writer)
     plt.close(fig)
     return out
