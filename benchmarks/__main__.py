@@ -48,12 +48,19 @@ CASES = {
     "ott": ({"joint": "ott"}, [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)], ("rodas4", 1e-10)),
     "alshaer2005": (
         {"joint": "alshaer2005"},
-        [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)],
+        [
+            ("rodas4", 1e-6),
+            ("rodas4", 1e-7),
+            ("rodas4", 1e-8),
+            ("ros34pw2", 1e-7),
+            ("ros34pw2", 1e-8),
+            ("scipy-radau", 1e-7),
+        ],
         ("rodas4", 1e-10),
     ),
     "alshaer2005_c0.05mm": (
         {"joint": "alshaer2005", "clearance": 5e-5},
-        [("rodas4", 1e-6), ("rodas4", 1e-7), ("scipy-radau", 1e-7)],
+        [("rodas4", 1e-6), ("rodas4", 1e-7), ("ros34pw2", 1e-7), ("scipy-radau", 1e-7)],
         ("rodas4", 1e-10),
     ),
 }

@@ -67,7 +67,7 @@ LAWS = [
 
 
 @pytest.mark.parametrize("law,cr", LAWS)
-@pytest.mark.parametrize("solver", ["dopri5", "rodas4"])
+@pytest.mark.parametrize("solver", ["dopri5", "rodas4", "ros34pw2"])
 def test_element_restitution_equals_the_law(law, cr, solver):
     lw = law(stiffness=K, exponent=1.5, restitution=cr)
     e, vt = impact(lw, solver=solver)
