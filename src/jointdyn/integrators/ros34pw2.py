@@ -76,6 +76,7 @@ def ros34pw2(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project
     stats[0] += 1
     hmin = 1e-14 * max(1.0, abs(t_end))
     age = REUSE  # force a Jacobian on the first step
+    e_prev = 1.0  # previous accepted error norm (PI step-size control)
     fail_status = OK
     while t < t_end:
         if stats[1] + stats[2] >= max_steps:
@@ -165,5 +166,9 @@ def ros34pw2(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project
         if rhs(t, y, mem, P, f0) != 0:
             return Y, MEM, iout, stats, RHS_FAILED, t, h, y, mem
         stats[0] += 1
-        h = max(h, h_prop) * min(3.0, max(0.2, 0.8 * max(en, 1e-10) ** (-1.0 / 3.0)))
+        # PI controller (Gustafsson; Hairer & Wanner II §IV.8): exponents 0.7/k and 0.4/k, k = 3
+        e_now = max(en, 1e-10)
+        fac = 0.9 * e_now ** (-0.7 / 3.0) * e_prev ** (0.4 / 3.0)
+        e_prev = e_now
+        h = max(h, h_prop) * min(3.0, max(0.2, fac))
     return Y, MEM, iout, stats, OK, t, h_prop, y, mem
