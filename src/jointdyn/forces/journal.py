@@ -59,9 +59,13 @@ class ClearanceJoint:
     """
 
     body_i: str
+    """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
+    """named point of body_i [m, body frame]"""
     body_j: str
+    """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
+    """named point of body_j [m, body frame]"""
     bearing_radius: float
     """R_B [m]"""
     journal_radius: float
@@ -134,9 +138,13 @@ class JournalBearing:
     ``body_j``; optional asperity contact for the mixed regime [T16]."""
 
     body_i: str
+    """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
+    """named point of body_i [m, body frame]"""
     body_j: str
+    """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
+    """named point of body_j [m, body frame]"""
     bearing_radius: float
     """R_B [m]"""
     journal_radius: float

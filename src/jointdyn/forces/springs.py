@@ -19,9 +19,13 @@ class SpringDamper:
     """Point-to-point spring–damper [T9]: F_j = −[k (ℓ − ℓ₀) + d ℓ̇] u, u = (P_j − P_i)/ℓ."""
 
     body_i: str
+    """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
+    """named point of body_i [m, body frame]"""
     body_j: str
+    """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
+    """named point of body_j [m, body frame]"""
     stiffness: float
     """k [N/m]"""
     damping: float = 0.0

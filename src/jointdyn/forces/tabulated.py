@@ -23,7 +23,9 @@ class TabulatedForce:
     table the end values hold. The reaction goes to the ground (an external force)."""
 
     body_j: str
+    """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
+    """named point of body_j [m, body frame]"""
     x: tuple[float, ...]
     """table abscissae, strictly increasing [s or rad]"""
     y: tuple[float, ...]

@@ -36,9 +36,13 @@ class Revolute:
     """
 
     body_i: str
+    """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
+    """named point of body_i [m, body frame]"""
     body_j: str
+    """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
+    """named point of body_j [m, body frame]"""
     code: ClassVar[int] = REVOLUTE
     rows: ClassVar[int] = 2
 
@@ -54,9 +58,13 @@ class Translational:
     """
 
     body_i: str
+    """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
+    """named point of body_i [m, body frame]"""
     body_j: str
+    """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
+    """named point of body_j [m, body frame]"""
     axis: tuple[float, float] = (1.0, 0.0)
     """guide direction in body i's frame (normalised on compile) [-]"""
     angle: float | None = None
@@ -74,7 +82,9 @@ class AngleDriver:
     """
 
     body_i: str
+    """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     body_j: str
+    """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     phi0: float = 0.0
     """initial relative angle [rad]"""
     omega: float = 0.0
