@@ -61,11 +61,11 @@ class ClearanceJoint:
     body_i: str
     """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
-    """named point of body_i [m, body frame]"""
+    """name of a point of body_i (coordinates in the body frame)"""
     body_j: str
     """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
-    """named point of body_j [m, body frame]"""
+    """name of a point of body_j (coordinates in the body frame)"""
     bearing_radius: float
     """R_B [m]"""
     journal_radius: float
@@ -140,11 +140,11 @@ class JournalBearing:
     body_i: str
     """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
-    """named point of body_i [m, body frame]"""
+    """name of a point of body_i (coordinates in the body frame)"""
     body_j: str
     """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
-    """named point of body_j [m, body frame]"""
+    """name of a point of body_j (coordinates in the body frame)"""
     bearing_radius: float
     """R_B [m]"""
     journal_radius: float

@@ -21,11 +21,11 @@ class SpringDamper:
     body_i: str
     """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
-    """named point of body_i [m, body frame]"""
+    """name of a point of body_i (coordinates in the body frame)"""
     body_j: str
     """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
-    """named point of body_j [m, body frame]"""
+    """name of a point of body_j (coordinates in the body frame)"""
     stiffness: float
     """k [N/m]"""
     damping: float = 0.0

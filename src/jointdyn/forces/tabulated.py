@@ -25,7 +25,7 @@ class TabulatedForce:
     body_j: str
     """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
-    """named point of body_j [m, body frame]"""
+    """name of a point of body_j (coordinates in the body frame)"""
     x: tuple[float, ...]
     """table abscissae, strictly increasing [s or rad]"""
     y: tuple[float, ...]

@@ -38,11 +38,11 @@ class Revolute:
     body_i: str
     """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
-    """named point of body_i [m, body frame]"""
+    """name of a point of body_i (coordinates in the body frame)"""
     body_j: str
     """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
-    """named point of body_j [m, body frame]"""
+    """name of a point of body_j (coordinates in the body frame)"""
     code: ClassVar[int] = REVOLUTE
     rows: ClassVar[int] = 2
 
@@ -60,11 +60,11 @@ class Translational:
     body_i: str
     """body carrying point_i (the bearing/hole side; ``"ground"`` allowed)"""
     point_i: str
-    """named point of body_i [m, body frame]"""
+    """name of a point of body_i (coordinates in the body frame)"""
     body_j: str
     """body carrying point_j (the journal/pin side; ``"ground"`` allowed)"""
     point_j: str
-    """named point of body_j [m, body frame]"""
+    """name of a point of body_j (coordinates in the body frame)"""
     axis: tuple[float, float] = (1.0, 0.0)
     """guide direction in body i's frame (normalised on compile) [-]"""
     angle: float | None = None
