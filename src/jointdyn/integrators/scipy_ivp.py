@@ -75,6 +75,9 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
         stats[0] += sol.nfev
         stats[3] += getattr(sol, "njev", 0)
         for i in range(len(sol.t)):
+            for k in contact:  # largest penetration, here over output samples and event states
+                d, _ = penetration(sol.y[:n, i], sol.y[n:, i], fint[k, 1], fint[k, 2], freal[k])
+                mem[k, 3] = max(mem[k, 3], d)
             Y[iout], MEM[iout] = sol.y[:, i], mem
             iout += 1
         if not sol.success:
