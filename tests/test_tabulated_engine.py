@@ -63,7 +63,7 @@ def test_engine_example_energy_balance():
     mass = 1.0 / sysm.minv
     E = 0.5 * (mass * res.qd**2).sum(1) - (res.q * sysm.q0_force).sum(1)
     w_drive = res.multipliers("drive")[:, 0] * res.qd[:, 3 * sysm.body_index("crank") + 2]
-    p_el = res.eout[:, :, 6].sum(1)
+    p_el = sum(res.element(name, "power") for name in sysm.element_names)
     trap = lambda p: np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(res.t))])
     balance = trap(w_drive) + trap(p_el) - (E - E[0])
     scale = trap(np.abs(w_drive))[-1]

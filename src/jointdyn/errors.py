@@ -21,3 +21,12 @@ class SimulationError(RuntimeError):
         super().__init__(message)
         self.t = t
         self.results = results
+
+
+class Interrupted(SimulationError):
+    """The run was stopped by a signal (Ctrl-C = SIGINT, or SIGTERM); ``results`` holds what was
+    computed up to ``t`` [s] and ``signal`` names the signal (e.g. ``"SIGINT"``)."""
+
+    def __init__(self, message: str, t: float, results=None, signal: str = "SIGINT"):
+        super().__init__(message, t, results)
+        self.signal = signal

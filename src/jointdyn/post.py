@@ -41,3 +41,23 @@ def count_events(flag: np.ndarray) -> int:
     """Number of rising edges of a 0/1 series (e.g. contact onsets between samples)."""
     f = np.asarray(flag) > 0.5
     return int(np.count_nonzero(f[1:] & ~f[:-1]) + (1 if f.size and f[0] else 0))
+
+
+def impacts(res, element: str) -> int:
+    """Contact onsets of a journal element counted over the accepted steps (its ``impacts``
+    memory slot at the last sample) [-]."""
+    m = res.memory(element, "impacts")
+    return int(m[-1]) if m.size else 0
+
+
+def max_penetration(res, element: str) -> float:
+    """Largest contact penetration of a journal element over the accepted steps [m] (0 if it
+    never touched)."""
+    m = res.memory(element, "max_penetration")
+    return float(m[-1]) if m.size else 0.0
+
+
+def dissipated_energy(res, element: str) -> float:
+    """Energy the element removed from the mechanism over the run, −∫ power dt [J]
+    (trapezoidal rule on the output samples)."""
+    return float(-np.trapezoid(res.element(element, "power"), res.t))

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from . import plots
+from . import plots, post
 from .runs import run_slider_crank
 
 
@@ -86,8 +86,8 @@ def run_case(case: Case, revs: float, progress=None):
         "wall_time_s": time.perf_counter() - t0,
         "max_xi": summ.get("max_xi", float("nan")),
     }
-    k = res.system.element_names.index("piston_pin") if "piston_pin" in res.system.element_names else None
-    summ["impacts"] = int(res.mem[-1, k, 2]) if k is not None else 0
+    pin = "piston_pin" in res.system.element_names
+    summ["impacts"] = post.impacts(res, "piston_pin") if pin else 0
     return res, cols, summ
 
 

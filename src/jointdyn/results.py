@@ -56,10 +56,30 @@ class Results:
         """λ rows of a named constraint, (n_t, rows)."""
         return self.lam[:, self.system.rows_of(constraint)]
 
-    def element(self, name: str, column: str) -> np.ndarray:
-        """An element output column (see ``OUT_COLUMNS``) over time."""
-        k = self.system.element_names.index(name)
-        return self.eout[:, k, OUT_COLUMNS.index(column)]
+    def _element(self, name: str):
+        names = self.system.element_names
+        if name not in names:
+            raise KeyError(f"no force element named {name!r}; elements are {list(names)}")
+        k = names.index(name)
+        return k, type(self.system.elements[k])
+
+    def element(self, name: str, output: str) -> np.ndarray:
+        """Time series of output ``output`` of force element ``name`` (see the element class's
+        ``OUTPUTS``, which also gives the unit)."""
+        k, cls = self._element(name)
+        if output not in cls.OUTPUTS:
+            valid = list(cls.OUTPUTS)
+            raise KeyError(f"element {name!r} ({cls.__name__}) has no output {output!r}; valid: {valid}")
+        return self.eout[:, k, list(cls.OUTPUTS).index(output)]
+
+    def memory(self, name: str, slot: str) -> np.ndarray:
+        """Time series of memory slot ``slot`` of force element ``name`` (see the element
+        class's ``MEMORY``), as stored at the output samples."""
+        k, cls = self._element(name)
+        if slot not in cls.MEMORY:
+            valid = list(cls.MEMORY)
+            raise KeyError(f"element {name!r} ({cls.__name__}) has no memory slot {slot!r}; valid: {valid}")
+        return self.mem[:, k, list(cls.MEMORY).index(slot)]
 
     def to_dataset(self):
         """xarray Dataset with the provenance in its attributes."""

@@ -84,9 +84,8 @@ def summarize(res, cols: dict, revs: float) -> dict:
         out["contact_time_s"] = float(np.sum(dt * 0.5 * (in_contact[1:] + in_contact[:-1])))
         out["contact_fraction"] = out["contact_time_s"] / float(res.t[-1] - res.t[0])
         out["max_contact_force"] = float(cols["contact_force"].max())
-        k = res.system.element_names.index("piston_pin")
-        out["max_penetration"] = float(res.mem[-1, k, 3])  # over accepted steps, not samples
-        out["impacts"] = int(res.mem[-1, k, 2])
+        out["max_penetration"] = post.max_penetration(res, "piston_pin")  # over accepted steps
+        out["impacts"] = post.impacts(res, "piston_pin")
     return out
 
 

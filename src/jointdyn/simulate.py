@@ -46,10 +46,12 @@ def _element_hint(system: System, P, t, y, mem) -> str:
     hints = []
     for k, (name, el) in enumerate(zip(system.element_names, system.elements)):
         if isinstance(el, (JournalBearing, ClearanceJoint)):
-            xi = float(eout[0, k, 2])
+            cols = list(el.OUTPUTS)
+            xi = float(eout[0, k, cols.index("xi")])
+            h_min = float(eout[0, k, cols.index("h_min")])
             if xi > 0.99:  # near the wall the film is stiff: the usual cause of step collapse
                 hints.append(
-                    f"element {name!r} was at ξ = {xi:.6f} (h_min = {eout[0, k, 3]:.3g} m)"
+                    f"element {name!r} was at ξ = {xi:.6f} (h_min = {h_min:.3g} m)"
                     + (
                         "; the film alone cannot carry the load there — give "
                         "the bearing a contact law (mixed regime)"

@@ -40,6 +40,18 @@ JOURNAL = 1
 R_B, R_J, LEN, MU, CLR, H_ASP, ONSET_TOL, V_MIN, CP0, FP0 = 4, 5, 6, 7, 8, 9, 10, 11, 12, 16
 # fint columns
 FILM, CONTACT, FRICTION, TABLE = 3, 4, 5, 6
+# declared outputs and memory (name -> unit); the kernel writes them in this order
+JOURNAL_OUTPUTS = {
+    "ex": "m",
+    "ey": "m",
+    "xi": "-",
+    "h_min": "m",
+    "Fx": "N",
+    "Fy": "N",
+    "power": "W",
+    "contact_force": "N",
+}
+JOURNAL_MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
 # mem columns
 IN_CONTACT, ONSET_VEL = 0, 1
 XI_GUARD = 1.0 - 1e-9  # film evaluated at most here when no contact law catches ξ → 1
@@ -80,6 +92,10 @@ class ClearanceJoint:
     """floor of the stored onset velocity δ̇⁻ (grazing contacts) [m/s]"""
     code: ClassVar[int] = JOURNAL
     centred: ClassVar[bool] = True
+    OUTPUTS: ClassVar[dict[str, str]] = JOURNAL_OUTPUTS
+    """output columns written by the kernel (name -> unit), world frame, force on the journal"""
+    MEMORY: ClassVar[dict[str, str]] = JOURNAL_MEMORY
+    """memory slots (name -> unit), changed only after accepted steps"""
 
     @property
     def clearance(self) -> float:
@@ -167,6 +183,10 @@ class JournalBearing:
     """floor of the stored onset velocity δ̇⁻ [m/s]"""
     code: ClassVar[int] = JOURNAL
     centred: ClassVar[bool] = True
+    OUTPUTS: ClassVar[dict[str, str]] = JOURNAL_OUTPUTS
+    """output columns written by the kernel (name -> unit), world frame, force on the journal"""
+    MEMORY: ClassVar[dict[str, str]] = JOURNAL_MEMORY
+    """memory slots (name -> unit), changed only after accepted steps"""
 
     clearance = ClearanceJoint.clearance
 

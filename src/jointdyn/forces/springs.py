@@ -33,6 +33,17 @@ class SpringDamper:
     free_length: float = 0.0
     """ℓ₀ [m]"""
     code: ClassVar[int] = SPRING_DAMPER
+    OUTPUTS: ClassVar[dict[str, str]] = {
+        "dx": "m",
+        "dy": "m",
+        "length": "m",
+        "length_rate": "m/s",
+        "Fx": "N",
+        "Fy": "N",
+        "power": "W",
+    }
+    """output columns written by the kernel (name -> unit), force on body j, world frame"""
+    MEMORY: ClassVar[dict[str, str]] = {}
 
     def params(self):
         return (self.stiffness, self.damping, self.free_length)
@@ -73,4 +84,3 @@ def spring_damper(q, qd, bi, bj, r, Q, out):
     out[4] = fx
     out[5] = fy
     out[6] = pair_power(qd, bi, bj, fx, fy, sjx, sjy, six + dx, siy + dy)
-    out[7] = 0.0

@@ -37,6 +37,16 @@ class TabulatedForce:
     period: float = 0.0
     """wrap the argument into [0, period) if > 0 [s or rad]"""
     code: ClassVar[int] = TABULATED_FORCE
+    OUTPUTS: ClassVar[dict[str, str]] = {
+        "px": "m",
+        "py": "m",
+        "argument": "s or rad",
+        "Fx": "N",
+        "Fy": "N",
+        "power": "W",
+    }
+    """output columns written by the kernel (name -> unit), world frame"""
+    MEMORY: ClassVar[dict[str, str]] = {}
     body_i: ClassVar[str] = "ground"
     point_i: ClassVar[None] = None
 
@@ -99,8 +109,6 @@ def tabulated_force(t, q, qd, bj, ip, r, tab, Q, out):
     out[0] = px
     out[1] = py
     out[2] = s
-    out[3] = 0.0
-    out[4] = fx
-    out[5] = fy
-    out[6] = fx * vx + fy * vy
-    out[7] = 0.0
+    out[3] = fx
+    out[4] = fy
+    out[5] = fx * vx + fy * vy
