@@ -9,6 +9,8 @@ import pytest
 from jointdyn.forces.film_finite import build_table, finite_force, solve_unit_pressures, unit_forces
 from jointdyn.forces.film_models import pi_film_force, short_force
 
+NO_PARAMS = np.zeros(1)  # the model's own parameter block (finite has none)
+
 MU, R, C = 0.4, 0.01, 5e-4
 T = np.zeros((1, 2))
 SCALE = 6 * MU * R**4 / C**2  # F = (6μR⁴/c²)·ρ·f [T36]
@@ -21,7 +23,7 @@ def direct(xi, psi, LD, nt=180, nz=24):
 
 
 def closed(fn, xi, psi, LD):
-    return np.array(fn(xi, math.sin(psi), math.cos(psi) * (2 + xi * xi), MU, R, 2 * R * LD, C, T))
+    return np.array(fn(xi, math.sin(psi), math.cos(psi) * (2 + xi * xi), MU, R, 2 * R * LD, C, NO_PARAMS, T))
 
 
 def test_mesh_convergence_is_second_order():
@@ -62,8 +64,8 @@ def test_homogeneity_and_table_accuracy():
     for _ in range(25):
         xi, psi = rng.uniform(0, 0.95), rng.uniform(-math.pi, math.pi)
         a, b = math.sin(psi), math.cos(psi) * (2 + xi * xi)
-        k1 = np.array(finite_force(xi, a, b, MU, R, 2 * R * 2.0, C, tab))
-        k3 = np.array(finite_force(xi, 3 * a, 3 * b, MU, R, 2 * R * 2.0, C, tab))
+        k1 = np.array(finite_force(xi, a, b, MU, R, 2 * R * 2.0, C, NO_PARAMS, tab))
+        k3 = np.array(finite_force(xi, 3 * a, 3 * b, MU, R, 2 * R * 2.0, C, NO_PARAMS, tab))
         np.testing.assert_allclose(k3, 3 * k1, rtol=1e-12)  # degree-1 homogeneity in (A, B)
         d = direct(xi, psi, 2.0)
         worst = max(worst, np.linalg.norm(k1 - d) / np.linalg.norm(d))
@@ -83,12 +85,18 @@ def test_continuous_across_psi_pi_and_zero_at_rest():
     tab = build_table(2.0)
     L = 2 * R * 2.0
     eps = 1e-9
-    a = np.array(finite_force(0.5, math.sin(math.pi - eps), math.cos(math.pi - eps) * 2.25, MU, R, L, C, tab))
+    a = np.array(
+        finite_force(
+            0.5, math.sin(math.pi - eps), math.cos(math.pi - eps) * 2.25, MU, R, L, C, NO_PARAMS, tab
+        )
+    )
     b = np.array(
-        finite_force(0.5, math.sin(-math.pi + eps), math.cos(-math.pi + eps) * 2.25, MU, R, L, C, tab)
+        finite_force(
+            0.5, math.sin(-math.pi + eps), math.cos(-math.pi + eps) * 2.25, MU, R, L, C, NO_PARAMS, tab
+        )
     )
     assert np.linalg.norm(a - b) < 1e-6 * np.linalg.norm(a)
-    assert finite_force(0.5, 0.0, 0.0, MU, R, L, C, tab) == (0.0, 0.0)
+    assert finite_force(0.5, 0.0, 0.0, MU, R, L, C, NO_PARAMS, tab) == (0.0, 0.0)
 
 
 def test_bad_length_ratio():

@@ -28,6 +28,7 @@ from jointdyn.forces.film_models import (
 )
 
 TABLE = np.zeros((1, 2))  # film kernels take a 2-D table slice (used by tabulated models)
+NO_PARAMS = np.zeros(1)  # the model's own parameter block (none of these models has parameters)
 KERNELS = {"ott": ott_force, "alshaer2005": pi_film_force}
 
 # ---- spec §8: parameters, states (§8.1) and reference values (§8.2, §8.2b, §8.3, §8.3b) --------
@@ -184,7 +185,7 @@ def rel(a, b):
 
 
 def kernel(model, xi, xi_dot, Omega, c, mu=MU, R=R, L=L):
-    return KERNELS[model](xi, xi_dot, xi * Omega, mu, R, L, c, TABLE)
+    return KERNELS[model](xi, xi_dot, xi * Omega, mu, R, L, c, NO_PARAMS, TABLE)
 
 
 # ---- spec tables ------------------------------------------------------------------------------
@@ -266,7 +267,9 @@ def pi_film_vs_reynolds(n=1000):
     errs = []
     for s in random_states(n):
         Om = s["omega_journal"] + s["omega_bearing"] - 2 * s["gamma_dot"]
-        got = pi_film_force(s["xi"], s["xi_dot"], s["xi"] * Om, s["mu"], s["R"], s["L"], s["c"], TABLE)
+        got = pi_film_force(
+            s["xi"], s["xi_dot"], s["xi"] * Om, s["mu"], s["R"], s["L"], s["c"], NO_PARAMS, TABLE
+        )
         ref = reynolds.pi_film_force(
             s["xi"],
             s["xi_dot"],
@@ -395,7 +398,9 @@ def test_small_eccentricity_isotropic_damping_and_cross_stiffness(model):
             u = np.array([math.cos(ang), math.sin(ang)])
             t = np.array([-u[1], u[0]])
             e = xi * c * u
-            fr, ft = KERNELS[model](xi, u @ ed / c, xi * (wj + wb) - 2 * (t @ ed) / c, MU, R, L, c, TABLE)
+            fr, ft = KERNELS[model](
+                xi, u @ ed / c, xi * (wj + wb) - 2 * (t @ ed) / c, MU, R, L, c, NO_PARAMS, TABLE
+            )
             F = fr * u + ft * t
             ref = -D * ed + 0.5 * D * (wj + wb) * np.array([-e[1], e[0]])
             # ξ = 0: exact (rounding only, 1e-13); ξ = 1e-6: the next terms are O(ξ) relative → 1e-5
@@ -506,7 +511,7 @@ def test_registry_and_dispatcher():
     assert len({m.code for m in FILM_MODELS.values()}) == len(FILM_MODELS)  # codes are unique
     assert (Ott.code, Alshaer2005.code) == (OTT, ALSHAER2005) == (0, 1)
     assert Ott.tag.startswith("T") and Alshaer2005.tag.startswith("T")
-    args = (0.5, 20.0, 0.5 * 323.6, MU, R, L, 5e-4, TABLE)
+    args = (0.5, 20.0, 0.5 * 323.6, MU, R, L, 5e-4, NO_PARAMS, TABLE)
     assert film_force(OTT, *args) == ott_force(*args)
     assert film_force(ALSHAER2005, *args) == pi_film_force(*args)
     assert all(math.isnan(v) for v in film_force(99, *args))
@@ -568,7 +573,7 @@ def test_broadcasting():
         5e-4,
     )
     assert all(v.shape == (2, 3) for v in F.values())
-    assert F["Fr"][1, 2] == ott_force(0.5, 1.0, 50.0, 0.4, 0.01, 0.04, 5e-4, TABLE)[0]
+    assert F["Fr"][1, 2] == ott_force(0.5, 1.0, 50.0, 0.4, 0.01, 0.04, 5e-4, NO_PARAMS, TABLE)[0]
 
 
 if __name__ == "__main__":  # measured agreement, for the record

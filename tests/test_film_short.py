@@ -15,6 +15,7 @@ from jointdyn.forces.journal import JournalBearing
 from jointdyn.model import Model
 
 TAB = np.zeros((1, 2))
+NO_PARAMS = np.zeros(1)  # the model's own parameter block (short has none)
 MU, R, L, C = 0.4, 0.01, 0.005, 5e-4  # L/D = 0.25
 
 
@@ -45,7 +46,7 @@ def test_matches_quadrature_of_its_own_pressure():
         xo = 0.0 if i % 11 == 0 else rng.normal() * 400
         if xd == 0 and xo == 0:
             continue
-        a, b = short_force(xi, xd, xo, MU, R, L, C, TAB), reference(xi, xd, xo)
+        a, b = short_force(xi, xd, xo, MU, R, L, C, NO_PARAMS, TAB), reference(xi, xd, xo)
         worst = max(worst, math.hypot(a[0] - b[0], a[1] - b[1]) / math.hypot(*b))
     # closed form is exact; adaptive quadrature of smooth pieces at epsrel 1e-11, (1−ξ²)^-2.5 growth
     assert worst < 1e-9
@@ -56,7 +57,7 @@ def test_steady_ocvirk_load():
     W_t = πμωRL³ξ/(4c²(1−ξ²)^{3/2}) for a fixed bearing, ξ̇ = 0, γ̇ = 0."""
     for xi in (0.1, 0.5, 0.9, 0.99):
         om = 523.6
-        fr, ft = short_force(xi, 0.0, xi * om, MU, R, L, C, TAB)
+        fr, ft = short_force(xi, 0.0, xi * om, MU, R, L, C, NO_PARAMS, TAB)
         assert fr == pytest.approx(-MU * om * R * L**3 * xi**2 / (C**2 * (1 - xi**2) ** 2), rel=1e-12)
         assert ft == pytest.approx(
             math.pi * MU * om * R * L**3 * xi / (4 * C**2 * (1 - xi**2) ** 1.5), rel=1e-12
@@ -64,13 +65,21 @@ def test_steady_ocvirk_load():
 
 
 def test_continuity_and_zero_at_rest():
-    assert short_force(0.5, 0.0, 0.0, MU, R, L, C, TAB) == (0.0, 0.0)
+    assert short_force(0.5, 0.0, 0.0, MU, R, L, C, NO_PARAMS, TAB) == (0.0, 0.0)
     for xi in (0.0, 0.3, 0.9):
         for xd, xo in ((1e-9, 300.0), (-1e-9, 300.0), (20.0, 1e-7), (20.0, -1e-7)):
-            a = np.array(short_force(xi, xd, xo, MU, R, L, C, TAB))
+            a = np.array(short_force(xi, xd, xo, MU, R, L, C, NO_PARAMS, TAB))
             b = np.array(
                 short_force(
-                    xi, 0.0 if abs(xd) < 1e-6 else xd, 0.0 if abs(xo) < 1e-6 else xo, MU, R, L, C, TAB
+                    xi,
+                    0.0 if abs(xd) < 1e-6 else xd,
+                    0.0 if abs(xo) < 1e-6 else xo,
+                    MU,
+                    R,
+                    L,
+                    C,
+                    NO_PARAMS,
+                    TAB,
                 )
             )
             # F is homogeneous of degree 1 and continuous: a 1e-9 perturbation moves it ~1e-9 relative
@@ -80,7 +89,7 @@ def test_continuity_and_zero_at_rest():
 def test_pure_squeeze_does_no_positive_work():
     for xi in np.linspace(0, 0.95, 20):
         for xd in (-10.0, 10.0):
-            fr, ft = short_force(xi, xd, 0.0, MU, R, L, C, TAB)
+            fr, ft = short_force(xi, xd, 0.0, MU, R, L, C, NO_PARAMS, TAB)
             assert fr * xd <= 0 and ft == pytest.approx(0.0, abs=1e-12 * abs(fr))
 
 

@@ -9,8 +9,8 @@ M is diagonal (centre-of-mass frames), so λ comes from the m×m Schur complemen
 a ≥ 0 is the Baumgarte rate [1/s] (critically damped form, α = a, β = a). The compiled
 integrators also project (q, q̇) onto Φ = 0, Φ̇ = 0 after every accepted step [T11].
 
-The packed system ``P`` (see :class:`jointdyn.system.System.packed`) is the tuple
-(minv, Q0, cint, creal, fint, freal, tables, m, stab, ws); ``ws`` is a preallocated
+The packed system ``P`` is a :class:`jointdyn.system.Packed` named tuple (minv, q0_force, cint,
+creal, fint, freal, tables, n_rows, stab, ws) read by field name; ``ws`` is a preallocated
 workspace (see :func:`workspace_size`) so that the right-hand side allocates nothing.
 """
 
@@ -86,12 +86,15 @@ def _schur(J, minv, m, n):
 
 @njit(cache=True)
 def accelerations(t, q, qd, mem, P, qdd, lam, eout):
-    """Solve the equations of motion for q̈ and λ at (t, q, q̇) [T10]; fill element outputs."""
-    minv, Q0, cint, creal, fint, freal, tables, m, stab, ws = P
+    """Solve the equations of motion for q̈ and λ at (t, q, q̇) [T10]; fill element outputs.
+    Returns OK, SINGULAR or NONFINITE."""
+    minv = P.minv
+    m = P.n_rows
+    ws = P.ws
     n = q.shape[0]
     Q = ws[:n]
-    Q[:] = Q0
-    status = eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
+    Q[:] = P.q0_force
+    eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout)
     if m > 0:
         o = n
         Phi = ws[o : o + m]
@@ -101,8 +104,8 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
         J = ws[o : o + m * n].reshape((m, n))
         o += m * n
         S = ws[o : o + m * m].reshape((m, m))
-        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
-        a = stab[0]
+        eval_constraints(t, q, qd, P.cint, P.creal, Phi, J, Phit, gam)
+        a = P.stab[0]
         if a > 0.0:
             for r in range(m):
                 phid = Phit[r]
@@ -128,19 +131,20 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
     for c in range(n):
         if not np.isfinite(qdd[c]):
             return NONFINITE
-    return status
+    return OK
 
 
 @njit(cache=True)
 def rhs(t, y, mem, P, ydot):
     """First-order form y = [q, q̇], ẏ = [q̇, q̈]. Returns a status code (0 = ok)."""
     n = y.shape[0] // 2
-    m = P[7]
-    ws = P[9]
+    m = P.n_rows
+    ws = P.ws
+    nf = P.fint.shape[0]
     o = n + 3 * m + m * n + m * m
     lam = ws[o : o + max(m, 1)]
     o += max(m, 1)
-    eout = ws[o : o + P[4].shape[0] * NOUT].reshape((P[4].shape[0], NOUT))
+    eout = ws[o : o + nf * NOUT].reshape((nf, NOUT))
     qdd = ydot[n:]
     ydot[:n] = y[n:]
     return accelerations(t, y[:n], y[n:], mem, P, qdd, lam, eout)
@@ -151,7 +155,7 @@ def project(t, y, P, tol):
     """Project y = [q, q̇] onto Φ = 0 (Gauss–Newton, M-weighted) and Φ̇ = 0 [T11].
 
     Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
-    minv, Q0, cint, creal, fint, freal, tables, m, stab, ws = P
+    minv, cint, creal, m = P.minv, P.cint, P.creal, P.n_rows
     if m == 0:
         return 0.0
     n = y.shape[0] // 2
@@ -199,7 +203,7 @@ def project(t, y, P, tol):
 @njit(cache=True)
 def constraint_residuals(t, y, P):
     """max |Φ| [m or rad] and max |Φ̇| [m/s or rad/s] at y (the drift report)."""
-    minv, Q0, cint, creal, fint, freal, tables, m, stab, ws = P
+    cint, creal, m = P.cint, P.creal, P.n_rows
     if m == 0:
         return 0.0, 0.0
     n = y.shape[0] // 2

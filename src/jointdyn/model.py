@@ -225,9 +225,10 @@ class Model:
     def to_dict(self) -> dict:
         """Plain-data description (for provenance and model files)."""
         from .forces.contact_laws import CONTACT_LAWS
+        from .forces.film_models import FILM_MODELS
         from .forces.friction_laws import FRICTION_LAWS
 
-        laws = {v: k for k, v in {**CONTACT_LAWS, **FRICTION_LAWS}.items()}
+        laws = {v: k for k, v in {**CONTACT_LAWS, **FRICTION_LAWS, **FILM_MODELS}.items()}
 
         def value(v):
             if type(v) in laws:  # a law instance: {"law": name, **its fields}

@@ -8,8 +8,12 @@ from importlib.metadata import version as _pkg_version
 
 import numpy as np
 
-from .forces.elements import OUT_COLUMNS
+from .forces.journal import OUTPUTS as _JOURNAL_OUTPUTS
 from .system import System
+
+# labels of the saved "output" dimension: the journal elements' outputs (the widest declaration;
+# other elements' columns are named by their class's OUTPUTS, see Results.element)
+OUT_COLUMNS = tuple(_JOURNAL_OUTPUTS)
 
 
 def _version() -> str:

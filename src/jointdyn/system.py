@@ -3,8 +3,34 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
+
+
+class Packed(NamedTuple):
+    """What the compiled kernels receive (see :mod:`jointdyn.dynamics`), read by field name."""
+
+    minv: np.ndarray
+    """(n,) inverse masses and inertias [1/kg, 1/(kg·m²)]"""
+    q0_force: np.ndarray
+    """(n,) constant generalised forces (gravity) [N, N·m]"""
+    cint: np.ndarray
+    """constraint integer table (``joints.constraints`` layouts)"""
+    creal: np.ndarray
+    """constraint real table [SI]"""
+    fint: np.ndarray
+    """force-element integer table (``forces.elements`` layouts)"""
+    freal: np.ndarray
+    """force-element real table [SI]"""
+    tables: np.ndarray
+    """(n_tables, rows, 2) film and force tables"""
+    n_rows: int
+    """number of constraint rows m"""
+    stab: np.ndarray
+    """(1,) Baumgarte rate a [1/s]"""
+    ws: np.ndarray
+    """preallocated float workspace (``dynamics.workspace_size``)"""
 
 
 @dataclass(frozen=True)
@@ -42,12 +68,12 @@ class System:
         """Number of coordinates (3 per moving body)."""
         return self.minv.shape[0]
 
-    def packed(self, baumgarte: float = 0.0):
-        """Tuple handed to the compiled kernels (see :mod:`jointdyn.dynamics`)."""
+    def packed(self, baumgarte: float = 0.0) -> Packed:
+        """The arrays handed to the compiled kernels, with a fresh workspace."""
         from .dynamics import workspace_size
 
         ws = np.zeros(workspace_size(self.n, self.n_rows, self.fint.shape[0]))
-        return (
+        return Packed(
             self.minv,
             self.q0_force,
             self.cint,
@@ -74,13 +100,3 @@ class System:
             names = list(self.constraint_names)
             raise KeyError(f"no constraint named {constraint!r}; have {names}") from None
         return slice(a, b)
-
-
-@dataclass
-class State:
-    """Time, coordinates, velocities and element memory at one instant."""
-
-    t: float
-    q: np.ndarray
-    qd: np.ndarray
-    mem: np.ndarray

@@ -1,8 +1,11 @@
-"""Normal contact laws (compiled kernels) and their registry.
+"""Normal contact laws (compiled kernels) and their registry ``CONTACT_LAWS``.
 
-Kernel: ``contact_force(code, delta, delta_dot, delta_dot0, p) -> F_n ≥ 0`` with penetration
-δ [m] (> 0 in contact), its rate δ̇ [m/s], the rate at contact onset δ̇⁻ [m/s] and the law's
-four parameters p. Damped laws are clamped to F_n ≥ 0 (no adhesive pull while separating).
+Each law is a frozen dataclass (its fields are the model-file schema) registered with its integer
+``code``, its compiled ``kernel(delta, delta_dot, delta_dot0, p) -> F_n ≥ 0`` and its ``PARAMS``
+(the fields packed, in order, into the parameter block p that the kernel reads through named
+slots): penetration δ [m] (> 0 in contact), its rate δ̇ [m/s], the rate at contact onset δ̇⁻
+[m/s]. Damped laws are clamped to F_n ≥ 0 (no adhesive pull while separating).
+``contact_force(code, …)`` dispatches on the code.
 """
 
 from __future__ import annotations
@@ -13,37 +16,72 @@ from typing import ClassVar
 
 from numba import njit
 
+from ..layout import Layout, block_width, check_codes, check_finite
+
 HERTZ, LANKARANI_NIKRAVESH, HUNT_CROSSLEY, FLORES, KELVIN_VOIGT = 0, 1, 2, 3, 4
+NONE = -1  # no contact law
 
 
 @njit(cache=True)
-def contact_force(code, delta, delta_dot, delta_dot0, p):
-    """F_n [N] of law ``code`` (p = [K, n, c_r or D, 0]) [T50–T55]."""
-    if delta <= 0.0:
-        return 0.0
-    K = p[0]
-    if code == KELVIN_VOIGT:
-        f = K * delta + p[2] * delta_dot  # [T55]
-        return f if f > 0.0 else 0.0
-    fe = K * delta ** p[1]
-    cr = p[2]
-    if code == HERTZ:
-        return fe  # [T51]
-    if code == LANKARANI_NIKRAVESH:
-        chi = 0.75 * (1.0 - cr * cr)  # [T52]
-    elif code == HUNT_CROSSLEY:
-        chi = 1.5 * (1.0 - cr)  # [T53]
-    elif code == FLORES:
-        chi = 8.0 * (1.0 - cr) / (5.0 * cr)  # [T54]
-    else:
-        return math.nan
+def _damped(fe, chi, delta_dot, delta_dot0):
+    """Kδⁿ(1 + χ δ̇/δ̇⁻) clamped ≥ 0 (no adhesive pull while separating)."""
     f = fe * (1.0 + chi * delta_dot / delta_dot0)
     return f if f > 0.0 else 0.0
 
 
-def _check(owner, name, v, unit, rule, ok):
-    if not (isinstance(v, (int, float)) and math.isfinite(v) and ok(v)):
-        raise ValueError(f"{owner}.{name} = {v!r} [{unit}]: must be {rule}")
+@njit(cache=True)
+def hertz_force(delta, delta_dot, delta_dot0, p):
+    """F = Kδⁿ [T51]."""
+    return p[STIFFNESS] * delta ** p[EXPONENT]
+
+
+@njit(cache=True)
+def lankarani_nikravesh_force(delta, delta_dot, delta_dot0, p):
+    """F = Kδⁿ[1 + 3(1 − c_r²)/4 · δ̇/δ̇⁻] [T52]."""
+    cr = p[RESTITUTION]
+    return _damped(p[STIFFNESS] * delta ** p[EXPONENT], 0.75 * (1.0 - cr * cr), delta_dot, delta_dot0)
+
+
+@njit(cache=True)
+def hunt_crossley_force(delta, delta_dot, delta_dot0, p):
+    """F = Kδⁿ[1 + 3(1 − c_r)/2 · δ̇/δ̇⁻] [T53]."""
+    cr = p[RESTITUTION]
+    return _damped(p[STIFFNESS] * delta ** p[EXPONENT], 1.5 * (1.0 - cr), delta_dot, delta_dot0)
+
+
+@njit(cache=True)
+def flores_force(delta, delta_dot, delta_dot0, p):
+    """F = Kδⁿ[1 + 8(1 − c_r)/(5c_r) · δ̇/δ̇⁻] [T54]."""
+    cr = p[RESTITUTION]
+    chi = 8.0 * (1.0 - cr) / (5.0 * cr)
+    return _damped(p[STIFFNESS] * delta ** p[EXPONENT], chi, delta_dot, delta_dot0)
+
+
+@njit(cache=True)
+def kelvin_voigt_force(delta, delta_dot, delta_dot0, p):
+    """F = Kδ + Dδ̇ clamped ≥ 0 [T55]."""
+    f = p[KV_STIFFNESS] * delta + p[KV_DAMPING] * delta_dot
+    return f if f > 0.0 else 0.0
+
+
+@njit(cache=True)
+def contact_force(code, delta, delta_dot, delta_dot0, p):
+    """F_n ≥ 0 [N] of the law with registry code ``code`` (p: its ``PARAMS`` block); 0 for
+    δ ≤ 0, nan for an unknown code [T50–T55]. One branch per registry entry (the contract tests
+    check every entry of ``CONTACT_LAWS`` against its own kernel)."""
+    if delta <= 0.0:
+        return 0.0
+    if code == HERTZ:
+        return hertz_force(delta, delta_dot, delta_dot0, p)
+    if code == LANKARANI_NIKRAVESH:
+        return lankarani_nikravesh_force(delta, delta_dot, delta_dot0, p)
+    if code == HUNT_CROSSLEY:
+        return hunt_crossley_force(delta, delta_dot, delta_dot0, p)
+    if code == FLORES:
+        return flores_force(delta, delta_dot, delta_dot0, p)
+    if code == KELVIN_VOIGT:
+        return kelvin_voigt_force(delta, delta_dot, delta_dot0, p)
+    return math.nan
 
 
 @dataclass(frozen=True)
@@ -54,15 +92,19 @@ class _PowerLaw:
     """n [-], > 0 (1.5 for Hertzian cylinder-in-hole approximations)"""
     restitution: float = 1.0
     """coefficient of restitution c_r [-] in (0, 1]"""
+    PARAMS: ClassVar[tuple[str, ...]] = ("stiffness", "exponent", "restitution")
+    """the fields packed, in this order, into the kernel's parameter block"""
 
     def __post_init__(self):
         o = type(self).__name__
-        _check(o, "stiffness", self.stiffness, "N/m^n", "> 0", lambda v: v > 0)
-        _check(o, "exponent", self.exponent, "-", "> 0", lambda v: v > 0)
-        _check(o, "restitution", self.restitution, "-", "in (0, 1]", lambda v: 0 < v <= 1)
+        check_finite(o, "stiffness", self.stiffness, "N/m^n", "> 0", lambda v: v > 0)
+        check_finite(o, "exponent", self.exponent, "-", "> 0", lambda v: v > 0)
+        check_finite(o, "restitution", self.restitution, "-", "in (0, 1]", lambda v: 0 < v <= 1)
 
-    def params(self):
-        return (float(self.stiffness), float(self.exponent), float(self.restitution), 0.0)
+    @classmethod
+    def example(cls):
+        """A typical instance (steel pin in a steel bushing, c = 0.5 mm) for tests and docs."""
+        return cls(stiffness=6.9e10)
 
 
 @dataclass(frozen=True)
@@ -70,6 +112,7 @@ class Hertz(_PowerLaw):
     """Hertz, F = Kδⁿ (elastic, no dissipation) [T51]."""
 
     code: ClassVar[int] = HERTZ
+    kernel: ClassVar = hertz_force
 
 
 @dataclass(frozen=True)
@@ -78,6 +121,7 @@ class LankaraniNikravesh(_PowerLaw):
 
     restitution: float = 0.9
     code: ClassVar[int] = LANKARANI_NIKRAVESH
+    kernel: ClassVar = lankarani_nikravesh_force
 
 
 @dataclass(frozen=True)
@@ -86,6 +130,7 @@ class HuntCrossley(_PowerLaw):
 
     restitution: float = 0.9
     code: ClassVar[int] = HUNT_CROSSLEY
+    kernel: ClassVar = hunt_crossley_force
 
 
 @dataclass(frozen=True)
@@ -94,6 +139,7 @@ class Flores(_PowerLaw):
 
     restitution: float = 0.9
     code: ClassVar[int] = FLORES
+    kernel: ClassVar = flores_force
 
 
 @dataclass(frozen=True)
@@ -105,13 +151,17 @@ class KelvinVoigt:
     damping: float = 0.0
     """D [N·s/m], ≥ 0"""
     code: ClassVar[int] = KELVIN_VOIGT
+    kernel: ClassVar = kelvin_voigt_force
+    PARAMS: ClassVar[tuple[str, ...]] = ("stiffness", "damping")
 
     def __post_init__(self):
-        _check("KelvinVoigt", "stiffness", self.stiffness, "N/m", "> 0", lambda v: v > 0)
-        _check("KelvinVoigt", "damping", self.damping, "N·s/m", "≥ 0", lambda v: v >= 0)
+        check_finite("KelvinVoigt", "stiffness", self.stiffness, "N/m", "> 0", lambda v: v > 0)
+        check_finite("KelvinVoigt", "damping", self.damping, "N·s/m", "≥ 0", lambda v: v >= 0)
 
-    def params(self):
-        return (float(self.stiffness), 1.0, float(self.damping), 0.0)
+    @classmethod
+    def example(cls):
+        """A typical instance for tests and docs."""
+        return cls(stiffness=1e8, damping=1e3)
 
 
 CONTACT_LAWS = {
@@ -121,6 +171,10 @@ CONTACT_LAWS = {
     "flores": Flores,
     "kelvin_voigt": KelvinVoigt,
 }
+check_codes(CONTACT_LAWS, "contact law")
+CONTACT_WIDTH = block_width(CONTACT_LAWS)
+STIFFNESS, EXPONENT, RESTITUTION = Layout(_PowerLaw.PARAMS).slots(*_PowerLaw.PARAMS)
+KV_STIFFNESS, KV_DAMPING = Layout(KelvinVoigt.PARAMS).slots(*KelvinVoigt.PARAMS)
 
 
 def law_from_name(name: str, **kwargs):
@@ -137,10 +191,10 @@ def journal_bearing_stiffness(R_bearing, R_journal, E_bearing, nu_bearing, E_jou
     for clearance joints by Lankarani & Nikravesh (1990) and Flores et al. (2006); an
     approximation for conformal contact (it overestimates K for large contact arcs)."""
     for name, v, unit in (("E_bearing", E_bearing, "Pa"), ("E_journal", E_journal, "Pa")):
-        _check("journal_bearing_stiffness", name, v, unit, "> 0", lambda x: x > 0)
+        check_finite("journal_bearing_stiffness", name, v, unit, "> 0", lambda x: x > 0)
     for name, v in (("nu_bearing", nu_bearing), ("nu_journal", nu_journal)):
-        _check("journal_bearing_stiffness", name, v, "-", "in (-1, 0.5)", lambda x: -1 < x < 0.5)
-    _check(
+        check_finite("journal_bearing_stiffness", name, v, "-", "in (-1, 0.5)", lambda x: -1 < x < 0.5)
+    check_finite(
         "journal_bearing_stiffness",
         "R_journal",
         R_journal,

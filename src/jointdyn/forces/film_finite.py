@@ -118,7 +118,7 @@ def _catmull_rom(p0, p1, p2, p3, w):
 
 
 @njit(cache=True)
-def finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Tabulated finite-length film force [T37]: F = (6μR⁴/c²)·ρ·f(ξ, ψ), bicubic (Catmull–Rom,
     C¹; periodic in ψ, end-clamped in u) in (u = −ln(1−ξ), ψ) on f·(1−ξ²)^{3/2}; for ξ > ξ_max
     the table edge is used with the (1−ξ²)^{-3/2} scaling (an extrapolation, see docs/theory.md)."""

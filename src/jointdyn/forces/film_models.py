@@ -1,7 +1,11 @@
 """Film models (compiled scalar kernels) and their registry ``FILM_MODELS``: long-bearing Ott and
 π-film (alshaer2005), short-bearing π-film, and the tabulated finite-length bearing.
 
-All kernels share one signature ``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, table) -> (Fr, Ft)``:
+Each model is a frozen dataclass registered in ``FILM_MODELS`` with its integer ``code``, its
+compiled ``kernel``, its theory ``tag`` and its ``PARAMS`` (names of its own real-valued fields,
+packed in order into the block ``p``; empty for the models below). A tabulated model also has a
+``table(length, journal_radius)`` method. All kernels share one signature
+``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft)``:
 
 * xi        eccentricity ratio ξ = |e|/c, 0 ≤ ξ < 1 [-]
 * xi_dot    ξ̇ = dξ/dt [1/s]
@@ -11,6 +15,7 @@ All kernels share one signature ``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, tabl
 * R         journal radius [m]
 * L         bearing length [m]
 * c         radial clearance [m]
+* p         the model's own parameter block (its ``PARAMS``, SI) [-]
 * table     float64 2-D array (rows, 2) used only by tabulated models (``finite``) [-]
 
 F_r is the film force on the journal along u = e/|e| (bearing centre → journal centre), F_t along
@@ -26,6 +31,7 @@ from typing import ClassVar
 import numpy as np
 from numba import njit
 
+from ..layout import block_width, check_codes, params_of
 from .film_finite import finite_force
 
 OTT = 0
@@ -48,7 +54,7 @@ def _atan_y_over_y_minus_1(y):
 
 
 @njit(cache=True)
-def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """The paper's π-film long bearing (alshaer2005), branch-free compact form [T21] (spec §3.3).
 
     k = μLR³/c², A = ξ̇, B = ξΩ/(2+ξ²), ρ = √(A²+B²), w = 1−ξ² = (1−ξ)(1+ξ),
@@ -78,7 +84,7 @@ def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 
 @njit(cache=True)
-def ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Ott's long-bearing model (paper eqs 1–5) with (1−ξ²) denominators, ω-free form [T25]
     (spec §4.1):
 
@@ -110,7 +116,7 @@ def _sommerfeld_angle(xi, sw, th):
 
 
 @njit(cache=True)
-def short_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def short_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Short-bearing (Ocvirk) π-film [T35]: p = −(3μ/h³)(L²/4 − z²)·g(θ)/c², g = 2ξ̇cosθ − ξΩ sinθ,
     kept where g < 0 (a half film θ ∈ (π/2 − β, 3π/2 − β), β = atan2(ξΩ, 2ξ̇)); with
     k_s = μRL³/(2c²) and w = 1 + ξcosθ:
@@ -147,17 +153,18 @@ def short_force(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 
 @njit(cache=True)
-def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, table):
-    """Film force (F_r, F_t) [N] of the model ``code`` (OTT, ALSHAER2005; see ``FILM_MODELS``);
-    (nan, nan) for an unknown code. Arguments as in the module docstring."""
+def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    """Film force (F_r, F_t) [N] of the model with registry code ``code``; (nan, nan) for an
+    unknown code. Arguments as in the module docstring. One branch per registry entry (the
+    contract tests check every entry of ``FILM_MODELS`` against its own kernel)."""
     if code == OTT:
-        return ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     elif code == ALSHAER2005:
-        return pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     elif code == SHORT:
-        return short_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return short_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     elif code == FINITE:
-        return finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     else:
         return math.nan, math.nan
 
@@ -169,7 +176,9 @@ class Ott:
     and diverging for ξ̇ < 0 near the wall) [T25]."""
 
     code: ClassVar[int] = OTT
+    kernel: ClassVar = ott_force
     tag: ClassVar[str] = "T25"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
 
 
 @dataclass(frozen=True)
@@ -178,7 +187,9 @@ class Alshaer2005:
     exact for the long-bearing Reynolds equation on a half film starting at θ₁ [T21]."""
 
     code: ClassVar[int] = ALSHAER2005
+    kernel: ClassVar = pi_film_force
     tag: ClassVar[str] = "T21"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
 
 
 @dataclass(frozen=True)
@@ -186,7 +197,9 @@ class Short:
     """Short-bearing (Ocvirk) π-film: valid for L/D ≲ 0.5 (a PhysicsWarning is issued beyond) [T35]."""
 
     code: ClassVar[int] = SHORT
+    kernel: ClassVar = short_force
     tag: ClassVar[str] = "T35"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
     max_length_over_diameter: ClassVar[float] = 0.5
 
 
@@ -196,10 +209,11 @@ class Finite:
     tabulated per L/D (built once, cached on disk) [T36–T38]."""
 
     code: ClassVar[int] = FINITE
+    kernel: ClassVar = finite_force
     tag: ClassVar[str] = "T36"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
 
-    @staticmethod
-    def table(length: float, journal_radius: float) -> np.ndarray:
+    def table(self, length: float, journal_radius: float) -> np.ndarray:
         """The force table of a bearing of this length and journal radius [m, m]."""
         from .film_finite import build_table
 
@@ -207,6 +221,28 @@ class Finite:
 
 
 FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005, "short": Short, "finite": Finite}
+check_codes(FILM_MODELS, "film model")
+FILM_WIDTH = block_width(FILM_MODELS)
+NONE = -1  # no film (dry clearance joint)
+
+
+def film_model(film):
+    """The film-model instance for ``film``: a registry name or an instance of a registered
+    model (ValueError listing the valid names otherwise)."""
+    if isinstance(film, str):
+        if film not in FILM_MODELS:
+            raise ValueError(f"film model {film!r} is unknown; valid names: {', '.join(FILM_MODELS)}")
+        return FILM_MODELS[film]()
+    if type(film) not in FILM_MODELS.values():
+        raise ValueError(f"film = {film!r}: not a film model; valid names: {', '.join(FILM_MODELS)}")
+    return film
+
+
+def film_name(film) -> str:
+    """Registry name of a film model given by name or instance."""
+    m = film_model(film)
+    return next(k for k, v in FILM_MODELS.items() if v is type(m))
+
 
 _UNITS = {
     "xi": "-",
@@ -228,7 +264,7 @@ def film_forces(
 ):
     """Film force on the journal for arrays of states (numpy broadcasting, SI, global rates).
 
-    model          name in ``FILM_MODELS`` ("ott", "alshaer2005")
+    model          name in ``FILM_MODELS`` or a film-model instance
     xi             eccentricity ratio, 0 ≤ ξ < 1 [-]
     xi_dot         dξ/dt [1/s]
     gamma          line-of-centres angle γ = atan2(e_y, e_x) [rad]
@@ -244,8 +280,7 @@ def film_forces(
     F_x = F_r cosγ − F_t sinγ, F_y = F_r sinγ + F_t cosγ [T27]. Raises ``ValueError`` naming the
     parameter, its unit, the allowed range and the flat index of the first bad row.
     """
-    if not isinstance(model, str) or model not in FILM_MODELS:
-        raise ValueError(f"film model {model!r} is unknown; valid names: {', '.join(FILM_MODELS)}")
+    fm = film_model(model)
     args = dict(
         xi=xi,
         xi_dot=xi_dot,
@@ -278,16 +313,18 @@ def film_forces(
     bad = np.flatnonzero((x < 0.0) | (x >= 1.0))
     if bad.size:
         raise ValueError(f"xi [-] must be in [0, 1); got {x.flat[bad[0]]!r} at index {bad[0]}")
-    code = FILM_MODELS[model].code
+    code = fm.code
+    p = np.zeros(FILM_WIDTH)
+    p[: len(fm.PARAMS)] = params_of(fm)
     xi_om = x * (arr["omega_journal"] + arr["omega_bearing"] - 2.0 * arr["gamma_dot"])  # [T20]
     fr = np.empty(x.shape)
     ft = np.empty(x.shape)
     tables = {}
-    if hasattr(FILM_MODELS[model], "table"):  # one table per distinct (length, radius)
+    if hasattr(fm, "table"):  # one table per distinct (length, radius)
         for i in range(x.size):
             key = (float(arr["length"].flat[i]), float(arr["radius"].flat[i]))
             if key not in tables:
-                tables[key] = FILM_MODELS[model].table(*key)
+                tables[key] = fm.table(*key)
     for i in range(x.size):
         tab = tables.get((float(arr["length"].flat[i]), float(arr["radius"].flat[i])), _NO_TABLE)
         fr.flat[i], ft.flat[i] = film_force(
@@ -299,6 +336,7 @@ def film_forces(
             arr["radius"].flat[i],
             arr["length"].flat[i],
             arr["clearance"].flat[i],
+            p,
             tab,
         )
     g = arr["gamma"]

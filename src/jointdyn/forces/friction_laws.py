@@ -1,7 +1,10 @@
-"""Friction laws (compiled kernels) and their registry.
+"""Friction laws (compiled kernels) and their registry ``FRICTION_LAWS``.
 
-Kernel: ``friction_coefficient(code, vt, p) -> μ_eff`` with the sign of the slip velocity
-v_t [m/s], so that the tangential force is −μ_eff·F_n (opposing slip).
+Each law is a frozen dataclass registered with its integer ``code``, its compiled
+``kernel(vt, p) -> μ_eff`` and its ``PARAMS`` (fields packed, in order, into the block p): μ_eff
+carries the sign of the slip velocity v_t [m/s], so that the tangential force −μ_eff·F_n opposes
+slip. ``friction_coefficient(code, …)`` dispatches on the code; code −1 (``NONE``) is
+frictionless.
 """
 
 from __future__ import annotations
@@ -12,32 +15,43 @@ from typing import ClassVar
 
 from numba import njit
 
-NONE, COULOMB, AMBROSIO = 0, 1, 2
+from ..layout import Layout, block_width, check_codes, check_finite
+
+COULOMB, AMBROSIO = 0, 1
+NONE = -1  # frictionless
+
+
+@njit(cache=True)
+def coulomb_coefficient(vt, p):
+    """μ_eff = μ tanh(v_t/v_reg) [T61]."""
+    return p[C_MU] * math.tanh(vt / p[C_VREG])
+
+
+@njit(cache=True)
+def ambrosio_coefficient(vt, p):
+    """μ_eff = μ·c_d(|v_t|)·sign(v_t), c_d a C¹ ramp from 0 at v0 to 1 at v1 [T62]."""
+    a = abs(vt)
+    v0 = p[A_V0]
+    v1 = p[A_V1]
+    if a <= v0:
+        cd = 0.0
+    elif a >= v1:
+        cd = 1.0
+    else:
+        x = (a - v0) / (v1 - v0)  # [T62]
+        cd = x * x * (3.0 - 2.0 * x)
+    return p[A_MU] * cd * (1.0 if vt > 0 else -1.0)
 
 
 @njit(cache=True)
 def friction_coefficient(code, vt, p):
-    """μ_eff(v_t) [-] of law ``code``, p = [μ_d, v_reg or v0, v1, 0] [T60–T62]."""
+    """μ_eff(v_t) [-] of the law with registry code ``code`` (p: its ``PARAMS`` block); 0 for
+    ``NONE`` and unknown codes [T60–T62]."""
     if code == COULOMB:
-        return p[0] * math.tanh(vt / p[1])  # [T61]
+        return coulomb_coefficient(vt, p)
     if code == AMBROSIO:
-        a = abs(vt)
-        v0 = p[1]
-        v1 = p[2]
-        if a <= v0:
-            cd = 0.0
-        elif a >= v1:
-            cd = 1.0
-        else:
-            x = (a - v0) / (v1 - v0)  # [T62]
-            cd = x * x * (3.0 - 2.0 * x)
-        return p[0] * cd * (1.0 if vt > 0 else -1.0)
+        return ambrosio_coefficient(vt, p)
     return 0.0
-
-
-def _check(owner, name, v, unit, rule, ok):
-    if not (isinstance(v, (int, float)) and math.isfinite(v) and ok(v)):
-        raise ValueError(f"{owner}.{name} = {v!r} [{unit}]: must be {rule}")
 
 
 @dataclass(frozen=True)
@@ -49,15 +63,19 @@ class Coulomb:
     regularization_velocity: float = 1e-4
     """v_reg [m/s], > 0"""
     code: ClassVar[int] = COULOMB
+    kernel: ClassVar = coulomb_coefficient
+    PARAMS: ClassVar[tuple[str, ...]] = ("coefficient", "regularization_velocity")
 
     def __post_init__(self):
-        _check("Coulomb", "coefficient", self.coefficient, "-", "≥ 0", lambda v: v >= 0)
-        _check(
+        check_finite("Coulomb", "coefficient", self.coefficient, "-", "≥ 0", lambda v: v >= 0)
+        check_finite(
             "Coulomb", "regularization_velocity", self.regularization_velocity, "m/s", "> 0", lambda v: v > 0
         )
 
-    def params(self):
-        return (float(self.coefficient), float(self.regularization_velocity), 0.0, 0.0)
+    @classmethod
+    def example(cls):
+        """A typical instance for tests and docs."""
+        return cls(coefficient=0.1)
 
 
 @dataclass(frozen=True)
@@ -72,14 +90,22 @@ class Ambrosio:
     v1: float = 1e-3
     """v1 [m/s], > v0"""
     code: ClassVar[int] = AMBROSIO
+    kernel: ClassVar = ambrosio_coefficient
+    PARAMS: ClassVar[tuple[str, ...]] = ("coefficient", "v0", "v1")
 
     def __post_init__(self):
-        _check("Ambrosio", "coefficient", self.coefficient, "-", "≥ 0", lambda v: v >= 0)
-        _check("Ambrosio", "v0", self.v0, "m/s", "≥ 0", lambda v: v >= 0)
-        _check("Ambrosio", "v1", self.v1, "m/s", f"> v0 = {self.v0}", lambda v: v > self.v0)
+        check_finite("Ambrosio", "coefficient", self.coefficient, "-", "≥ 0", lambda v: v >= 0)
+        check_finite("Ambrosio", "v0", self.v0, "m/s", "≥ 0", lambda v: v >= 0)
+        check_finite("Ambrosio", "v1", self.v1, "m/s", f"> v0 = {self.v0}", lambda v: v > self.v0)
 
-    def params(self):
-        return (float(self.coefficient), float(self.v0), float(self.v1), 0.0)
+    @classmethod
+    def example(cls):
+        """A typical instance for tests and docs."""
+        return cls(coefficient=0.1)
 
 
 FRICTION_LAWS = {"coulomb": Coulomb, "ambrosio": Ambrosio}
+check_codes(FRICTION_LAWS, "friction law")
+FRICTION_WIDTH = block_width(FRICTION_LAWS)
+C_MU, C_VREG = Layout(Coulomb.PARAMS).slots(*Coulomb.PARAMS)
+A_MU, A_V0, A_V1 = Layout(Ambrosio.PARAMS).slots(*Ambrosio.PARAMS)

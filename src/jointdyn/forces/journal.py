@@ -23,25 +23,42 @@ contact law continuously when h_min = c(1 − ξ) falls below h_a.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from typing import ClassVar
 
 from numba import njit
 
+from ..errors import PhysicsWarning
 from ..kinematics import body_state, point_kinematics
-from .contact_laws import CONTACT_LAWS, contact_force
-from .film_models import FILM_MODELS, film_force
-from .friction_laws import FRICTION_LAWS, friction_coefficient
+from ..layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout, check_finite, params_of
+from .contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_force
+from .contact_laws import NONE as NO_CONTACT
+from .film_models import FILM_MODELS, FILM_WIDTH, film_force, film_model, film_name
+from .film_models import NONE as NO_FILM
+from .friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient
+from .friction_laws import NONE as NO_FRICTION
 from .transfer import apply_pair, pair_power
 
 JOURNAL = 1
 
-# freal columns (after the four point coordinates)
-R_B, R_J, LEN, MU, CLR, H_ASP, ONSET_TOL, V_MIN, CP0, FP0 = 4, 5, 6, 7, 8, 9, 10, 11, 12, 16
-# fint columns
-FILM, CONTACT, FRICTION, TABLE = 3, 4, 5, 6
-# declared outputs and memory (name -> unit); the kernel writes them in this order
-JOURNAL_OUTPUTS = {
+# declared layouts (names -> slots of the element's rows); the kernels read these constants only
+REAL = Layout(
+    POINTS
+    + (
+        "bearing_radius",
+        "journal_radius",
+        "length",
+        "viscosity",
+        "clearance",
+        "asperity_height",
+        "onset_tolerance",
+        "min_impact_velocity",
+    ),
+    blocks={"film": FILM_WIDTH, "contact": CONTACT_WIDTH, "friction": FRICTION_WIDTH},
+)
+INT = Layout(HEADER + ("film", "contact", "friction", "table"))
+OUTPUTS = {
     "ex": "m",
     "ey": "m",
     "xi": "-",
@@ -51,15 +68,16 @@ JOURNAL_OUTPUTS = {
     "power": "W",
     "contact_force": "N",
 }
-JOURNAL_MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
-# mem columns
-IN_CONTACT, ONSET_VEL = 0, 1
+MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
+
+R_B, R_J, LEN, MU, CLR, H_ASP, ONSET_TOL, V_MIN = REAL.slots(*REAL.names[4:])
+FILM_P0, FILM_P1 = REAL.block("film").start, REAL.block("film").stop
+CONTACT_P0, CONTACT_P1 = REAL.block("contact").start, REAL.block("contact").stop
+FRICTION_P0, FRICTION_P1 = REAL.block("friction").start, REAL.block("friction").stop
+FILM, CONTACT, FRICTION, TABLE = INT.slots("film", "contact", "friction", "table")
+IN_CONTACT, ONSET_VEL, IMPACTS, MAX_PEN = Layout(MEMORY).slots(*MEMORY)
+O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN = Layout(OUTPUTS).slots(*OUTPUTS)
 XI_GUARD = 1.0 - 1e-9  # film evaluated at most here when no contact law catches ξ → 1
-
-
-def _check(owner, name, v, unit, rule, ok):
-    if not (isinstance(v, (int, float)) and math.isfinite(v) and ok(v)):
-        raise ValueError(f"{owner}.{name} = {v!r} [{unit}]: must be {rule}")
 
 
 @dataclass(frozen=True)
@@ -92,9 +110,11 @@ class ClearanceJoint:
     """floor of the stored onset velocity δ̇⁻ (grazing contacts) [m/s]"""
     code: ClassVar[int] = JOURNAL
     centred: ClassVar[bool] = True
-    OUTPUTS: ClassVar[dict[str, str]] = JOURNAL_OUTPUTS
+    REAL: ClassVar[Layout] = REAL
+    INT: ClassVar[Layout] = INT
+    OUTPUTS: ClassVar[dict[str, str]] = OUTPUTS
     """output columns written by the kernel (name -> unit), world frame, force on the journal"""
-    MEMORY: ClassVar[dict[str, str]] = JOURNAL_MEMORY
+    MEMORY: ClassVar[dict[str, str]] = MEMORY
     """memory slots (name -> unit), changed only after accepted steps"""
 
     @property
@@ -104,8 +124,8 @@ class ClearanceJoint:
 
     def validate(self):
         o = type(self).__name__
-        _check(o, "bearing_radius", self.bearing_radius, "m", "> 0", lambda v: v > 0)
-        _check(
+        check_finite(o, "bearing_radius", self.bearing_radius, "m", "> 0", lambda v: v > 0)
+        check_finite(
             o,
             "journal_radius",
             self.journal_radius,
@@ -113,8 +133,8 @@ class ClearanceJoint:
             f"in (0, bearing_radius = {self.bearing_radius})",
             lambda v: 0 < v < self.bearing_radius,
         )
-        _check(o, "onset_tolerance", self.onset_tolerance, "m", "> 0", lambda v: v > 0)
-        _check(o, "min_impact_velocity", self.min_impact_velocity, "m/s", "> 0", lambda v: v > 0)
+        check_finite(o, "onset_tolerance", self.onset_tolerance, "m", "> 0", lambda v: v > 0)
+        check_finite(o, "min_impact_velocity", self.min_impact_velocity, "m/s", "> 0", lambda v: v > 0)
         if isinstance(self, ClearanceJoint) and self.contact is None:
             raise ValueError(
                 f"{o}.contact: a dry clearance joint needs a contact law; valid: {sorted(CONTACT_LAWS)}"
@@ -128,24 +148,39 @@ class ClearanceJoint:
                 f"{o}.friction = {self.friction!r}: not a friction law; valid: {sorted(FRICTION_LAWS)}"
             )
 
-    def int_params(self):
-        return (-1, self.contact.code, self.friction.code if self.friction is not None else 0, 0)
+    def _film(self):
+        return None
 
-    def params(self):
-        c = self.clearance
-        fp = self.friction.params() if self.friction is not None else (0.0, 0.0, 0.0, 0.0)
-        return (
-            self.bearing_radius,
-            self.journal_radius,
-            0.0,
-            0.0,
-            c,
-            0.0,
-            self.onset_tolerance,
-            self.min_impact_velocity,
-            *self.contact.params(),
-            *fp,
-        )
+    def pack(self, tables: list, body_index) -> tuple[dict, dict, dict]:
+        """Element-specific slots (ints, reals, blocks) of the declared layouts; film tables are
+        appended to ``tables`` and referenced by index."""
+        film = self._film()
+        table = 0
+        if film is not None and hasattr(film, "table"):
+            tables.append(film.table(self.length, self.journal_radius))
+            table = len(tables) - 1
+        ints = {
+            "film": film.code if film is not None else NO_FILM,
+            "contact": self.contact.code if self.contact is not None else NO_CONTACT,
+            "friction": self.friction.code if self.friction is not None else NO_FRICTION,
+            "table": table,
+        }
+        reals = {
+            "bearing_radius": self.bearing_radius,
+            "journal_radius": self.journal_radius,
+            "length": getattr(self, "length", 0.0),
+            "viscosity": getattr(self, "viscosity", 0.0),
+            "clearance": self.clearance,
+            "asperity_height": getattr(self, "asperity_height", 0.0),
+            "onset_tolerance": self.onset_tolerance,
+            "min_impact_velocity": self.min_impact_velocity,
+        }
+        blocks = {
+            name: params_of(law)
+            for name, law in (("film", film), ("contact", self.contact), ("friction", self.friction))
+            if law is not None
+        }
+        return ints, reals, blocks
 
 
 @dataclass(frozen=True)
@@ -169,8 +204,8 @@ class JournalBearing:
     """L [m], > 0"""
     viscosity: float
     """μ [Pa·s], > 0"""
-    film: str = "alshaer2005"
-    """film model name (``FILM_MODELS``)"""
+    film: object = "alshaer2005"
+    """film model: a name in ``FILM_MODELS`` or an instance of a registered model"""
     contact: object | None = None
     """contact law for the mixed regime, or None (then ξ ≥ 1 stops the simulation)"""
     friction: object | None = None
@@ -183,19 +218,25 @@ class JournalBearing:
     """floor of the stored onset velocity δ̇⁻ [m/s]"""
     code: ClassVar[int] = JOURNAL
     centred: ClassVar[bool] = True
-    OUTPUTS: ClassVar[dict[str, str]] = JOURNAL_OUTPUTS
+    REAL: ClassVar[Layout] = REAL
+    INT: ClassVar[Layout] = INT
+    OUTPUTS: ClassVar[dict[str, str]] = OUTPUTS
     """output columns written by the kernel (name -> unit), world frame, force on the journal"""
-    MEMORY: ClassVar[dict[str, str]] = JOURNAL_MEMORY
+    MEMORY: ClassVar[dict[str, str]] = MEMORY
     """memory slots (name -> unit), changed only after accepted steps"""
 
     clearance = ClearanceJoint.clearance
+    pack = ClearanceJoint.pack
+
+    def _film(self):
+        return film_model(self.film)
 
     def validate(self):
         o = type(self).__name__
         ClearanceJoint.validate(self)
-        _check(o, "length", self.length, "m", "> 0", lambda v: v > 0)
-        _check(o, "viscosity", self.viscosity, "Pa·s", "> 0", lambda v: v > 0)
-        _check(
+        check_finite(o, "length", self.length, "m", "> 0", lambda v: v > 0)
+        check_finite(o, "viscosity", self.viscosity, "Pa·s", "> 0", lambda v: v > 0)
+        check_finite(
             o,
             "asperity_height",
             self.asperity_height,
@@ -203,52 +244,27 @@ class JournalBearing:
             f"in [0, clearance = {self.clearance:.6g})",
             lambda v: 0 <= v < self.clearance,
         )
-        if self.film not in FILM_MODELS:
-            raise ValueError(f"{o}.film = {self.film!r}: unknown film model; valid: {sorted(FILM_MODELS)}")
-        limit = getattr(FILM_MODELS[self.film], "max_length_over_diameter", math.inf)
+        try:
+            name = film_name(self.film)
+        except ValueError:
+            raise ValueError(
+                f"{o}.film = {self.film!r}: unknown film model; valid: {sorted(FILM_MODELS)}"
+            ) from None
+        limit = getattr(film_model(self.film), "max_length_over_diameter", math.inf)
         ld = self.length / (2.0 * self.journal_radius)
         if ld > limit:
-            import warnings
-
-            from ..errors import PhysicsWarning
-
             warnings.warn(
-                f"{o}: film model {self.film!r} is meant for L/D ≤ {limit:g}; this bearing has "
-                f"L/D = {ld:.3g}",
+                f"{o}: film model {name!r} is meant for L/D ≤ {limit:g}; this bearing has L/D = {ld:.3g}",
                 PhysicsWarning,
                 stacklevel=2,
             )
-
-    def int_params(self):
-        return (
-            FILM_MODELS[self.film].code,
-            self.contact.code if self.contact is not None else -1,
-            self.friction.code if self.friction is not None else 0,
-            0,
-        )
-
-    def params(self):
-        fp = self.friction.params() if self.friction is not None else (0.0, 0.0, 0.0, 0.0)
-        cp = self.contact.params() if self.contact is not None else (0.0, 0.0, 0.0, 0.0)
-        return (
-            self.bearing_radius,
-            self.journal_radius,
-            self.length,
-            self.viscosity,
-            self.clearance,
-            self.asperity_height,
-            self.onset_tolerance,
-            self.min_impact_velocity,
-            *cp,
-            *fp,
-        )
 
 
 @njit(cache=True)
 def journal_kinematics(q, qd, bi, bj, r):
     """e, ė [m, m/s], arms s_i, s_j [m] and body rates ω_i, ω_j [rad/s] [T14]."""
-    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, r[0], r[1])
-    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, r[2], r[3])
+    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, r[XI_I], r[ETA_I])
+    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, r[XI_J], r[ETA_J])
     wi = body_state(q, qd, bi)[5]
     wj = body_state(q, qd, bj)[5]
     return pjx - pix, pjy - piy, vjx - vix, vjy - viy, six, siy, sjx, sjy, wi, wj
@@ -265,10 +281,9 @@ def penetration(q, qd, bi, bj, r):
 
 @njit(cache=True)
 def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
-    """Film and/or contact forces of one journal element into Q [T14–T16]; fills ``out``.
-
-    Returns 0, or 1 if ξ ≥ 1 was probed with no contact law (evaluated guarded at ξ = 1 − 1e-9).
-    """
+    """Film and/or contact forces of one journal element into Q [T14–T16]; fills ``out``
+    (``OUTPUTS``). ξ ≥ 1 probed with no contact law is evaluated guarded at ξ = 1 − 1e-9 (film
+    breakdown is reported on accepted steps by ``elements.advance_memory``)."""
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = math.sqrt(ex * ex + ey * ey)
@@ -282,18 +297,17 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
     tx = -uy
     ty = ux
     xi = e / c
-    status = 0
     power = 0.0
     ffx = 0.0
     ffy = 0.0
-    if ip[FILM] >= 0:
-        xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] >= 0 else XI_GUARD
-        if ip[CONTACT] < 0 and xi >= 1.0:
-            status = 1
+    if ip[FILM] != NO_FILM:
+        xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
         xi_f = min(xi, xi_cap, XI_GUARD)
         xid = (ux * edx + uy * edy) / c
         xi_om = xi_f * (wj + wi) - 2.0 * (tx * edx + ty * edy) / c  # ξΩ [T14]
-        fr, ft = film_force(ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, tables[ip[TABLE]])
+        fr, ft = film_force(
+            ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
+        )
         ffx = fr * ux + ft * tx
         ffy = fr * uy + ft * ty
         # film force at the journal centre, reaction through the same point [T8, T15]
@@ -302,27 +316,30 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
     fn = 0.0
     fcx = 0.0
     fcy = 0.0
-    if ip[CONTACT] >= 0:
+    if ip[CONTACT] != NO_CONTACT:
         delta = e - (c - r[H_ASP])
         if delta > 0.0:
             dd = ux * edx + uy * edy
             v0 = mem[ONSET_VEL] if mem[IN_CONTACT] > 0.5 else max(dd, r[V_MIN])
-            fn = contact_force(ip[CONTACT], delta, dd, v0, r[CP0 : CP0 + 4])
+            fn = contact_force(ip[CONTACT], delta, dd, v0, r[CONTACT_P0:CONTACT_P1])
             # slip of the journal surface relative to the bearing surface at P_c [T16]
             vt = tx * edx + ty * edy + wj * r[R_J] - wi * r[R_B]
-            mu = friction_coefficient(ip[FRICTION], vt, r[FP0 : FP0 + 4]) if ip[FRICTION] > 0 else 0.0
+            mu = (
+                friction_coefficient(ip[FRICTION], vt, r[FRICTION_P0:FRICTION_P1])
+                if ip[FRICTION] != NO_FRICTION
+                else 0.0
+            )
             fcx = -fn * ux - mu * fn * tx
             fcy = -fn * uy - mu * fn * ty
             cx = r[R_J] * ux  # P_c − P_j
             cy = r[R_J] * uy
             apply_pair(Q, bi, bj, fcx, fcy, sjx + cx, sjy + cy, six + ex + cx, siy + ey + cy)
             power += pair_power(qd, bi, bj, fcx, fcy, sjx + cx, sjy + cy, six + ex + cx, siy + ey + cy)
-    out[4] = ffx + fcx
-    out[5] = ffy + fcy
-    out[6] = power
-    out[7] = fn
-    out[0] = ex
-    out[1] = ey
-    out[2] = xi
-    out[3] = c - e
-    return status
+    out[O_FX] = ffx + fcx
+    out[O_FY] = ffy + fcy
+    out[O_POWER] = power
+    out[O_FN] = fn
+    out[O_EX] = ex
+    out[O_EY] = ey
+    out[O_XI] = xi
+    out[O_HMIN] = c - e

@@ -9,9 +9,15 @@ from typing import ClassVar
 from numba import njit
 
 from ..kinematics import point_kinematics
+from ..layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout
 from .transfer import apply_pair, pair_power
 
 SPRING_DAMPER = 0
+REAL = Layout(POINTS + ("stiffness", "damping", "free_length"))
+INT = Layout(HEADER)
+OUTPUTS = {"dx": "m", "dy": "m", "length": "m", "length_rate": "m/s", "Fx": "N", "Fy": "N", "power": "W"}
+K, D, L0 = REAL.slots("stiffness", "damping", "free_length")
+O_DX, O_DY, O_LEN, O_LEND, O_FX, O_FY, O_POWER = Layout(OUTPUTS).slots(*OUTPUTS)
 
 
 @dataclass(frozen=True)
@@ -33,20 +39,15 @@ class SpringDamper:
     free_length: float = 0.0
     """ℓ₀ [m]"""
     code: ClassVar[int] = SPRING_DAMPER
-    OUTPUTS: ClassVar[dict[str, str]] = {
-        "dx": "m",
-        "dy": "m",
-        "length": "m",
-        "length_rate": "m/s",
-        "Fx": "N",
-        "Fy": "N",
-        "power": "W",
-    }
+    REAL: ClassVar[Layout] = REAL
+    INT: ClassVar[Layout] = INT
+    OUTPUTS: ClassVar[dict[str, str]] = OUTPUTS
     """output columns written by the kernel (name -> unit), force on body j, world frame"""
     MEMORY: ClassVar[dict[str, str]] = {}
 
-    def params(self):
-        return (self.stiffness, self.damping, self.free_length)
+    def pack(self, tables: list, body_index) -> tuple[dict, dict, dict]:
+        """Element-specific slots (ints, reals, blocks) of the declared layouts."""
+        return {}, {"stiffness": self.stiffness, "damping": self.damping, "free_length": self.free_length}, {}
 
     def validate(self):
         for name, v, unit in (
@@ -60,9 +61,9 @@ class SpringDamper:
 
 @njit(cache=True)
 def spring_damper(q, qd, bi, bj, r, Q, out):
-    """Apply the spring–damper of real-parameter row r [T9]; fill ``out`` (length ≥ 8)."""
-    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, r[0], r[1])
-    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, r[2], r[3])
+    """Apply the spring–damper of real-parameter row r [T9]; fill ``out`` (``OUTPUTS``)."""
+    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, r[XI_I], r[ETA_I])
+    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, r[XI_J], r[ETA_J])
     dx = pjx - pix
     dy = pjy - piy
     ell = math.sqrt(dx * dx + dy * dy)
@@ -73,14 +74,14 @@ def spring_damper(q, qd, bi, bj, r, Q, out):
         ux = 1.0
         uy = 0.0
     elld = ux * (vjx - vix) + uy * (vjy - viy)
-    f = -(r[4] * (ell - r[6]) + r[5] * elld)
+    f = -(r[K] * (ell - r[L0]) + r[D] * elld)
     fx = f * ux
     fy = f * uy
     apply_pair(Q, bi, bj, fx, fy, sjx, sjy, six + dx, siy + dy)
-    out[0] = dx
-    out[1] = dy
-    out[2] = ell
-    out[3] = elld
-    out[4] = fx
-    out[5] = fy
-    out[6] = pair_power(qd, bi, bj, fx, fy, sjx, sjy, six + dx, siy + dy)
+    out[O_DX] = dx
+    out[O_DY] = dy
+    out[O_LEN] = ell
+    out[O_LEND] = elld
+    out[O_FX] = fx
+    out[O_FY] = fy
+    out[O_POWER] = pair_power(qd, bi, bj, fx, fy, sjx, sjy, six + dx, siy + dy)

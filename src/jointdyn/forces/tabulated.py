@@ -10,8 +10,16 @@ import numpy as np
 from numba import njit
 
 from ..kinematics import body_state, point_kinematics
+from ..layout import ETA_J, HEADER, POINTS, XI_J, Layout
 
 TABULATED_FORCE = 3
+TIME = -2  # "argument" slot value: the argument is the time
+REAL = Layout(POINTS + ("direction_x", "direction_y", "period"))
+INT = Layout(HEADER + ("table", "argument", "rows"))
+OUTPUTS = {"px": "m", "py": "m", "argument": "s or rad", "Fx": "N", "Fy": "N", "power": "W"}
+DIR_X, DIR_Y, PERIOD = REAL.slots("direction_x", "direction_y", "period")
+TABLE, ARGUMENT, ROWS = INT.slots("table", "argument", "rows")
+O_PX, O_PY, O_ARG, O_FX, O_FY, O_POWER = Layout(OUTPUTS).slots(*OUTPUTS)
 
 
 @dataclass(frozen=True)
@@ -37,14 +45,9 @@ class TabulatedForce:
     period: float = 0.0
     """wrap the argument into [0, period) if > 0 [s or rad]"""
     code: ClassVar[int] = TABULATED_FORCE
-    OUTPUTS: ClassVar[dict[str, str]] = {
-        "px": "m",
-        "py": "m",
-        "argument": "s or rad",
-        "Fx": "N",
-        "Fy": "N",
-        "power": "W",
-    }
+    REAL: ClassVar[Layout] = REAL
+    INT: ClassVar[Layout] = INT
+    OUTPUTS: ClassVar[dict[str, str]] = OUTPUTS
     """output columns written by the kernel (name -> unit), world frame"""
     MEMORY: ClassVar[dict[str, str]] = {}
     body_i: ClassVar[str] = "ground"
@@ -65,6 +68,15 @@ class TabulatedForce:
         if not (math.isfinite(self.period) and self.period >= 0):
             raise ValueError(f"{o}.period = {self.period!r} [s or rad]: must be ≥ 0")
 
+    def pack(self, tables: list, body_index) -> tuple[dict, dict, dict]:
+        """Element-specific slots (ints, reals, blocks); the (x, y) table is appended to ``tables``."""
+        tables.append(np.column_stack([self.x, self.y]).astype(float))
+        d = np.asarray(self.direction, float)
+        d = d / np.hypot(*d)
+        arg = TIME if self.argument == "time" else body_index(self.argument)
+        ints = {"table": len(tables) - 1, "argument": arg, "rows": len(self.x)}
+        return ints, {"direction_x": d[0], "direction_y": d[1], "period": self.period}, {}
+
     @classmethod
     def from_csv(cls, path, body_j, point_j, **kw):
         """Read the table from a two-column CSV (header line, then x, y rows)."""
@@ -74,15 +86,14 @@ class TabulatedForce:
 
 @njit(cache=True)
 def tabulated_force(t, q, qd, bj, ip, r, tab, Q, out):
-    """Apply the tabulated force [T17]: ip = [type, −1, j, table, arg body (−2 = time), n];
-    r = [0, 0, ξ_j, η_j, d_x, d_y, period]; tab rows (x, y)."""
-    n = ip[5]
-    if ip[4] == -2:
+    """Apply the tabulated force [T17] (slots: ``INT``, ``REAL``); tab rows (x, y)."""
+    n = ip[ROWS]
+    if ip[ARGUMENT] == TIME:
         s = t
     else:
-        s = body_state(q, qd, ip[4])[2]
-    if r[6] > 0.0:
-        s = s - r[6] * math.floor(s / r[6])
+        s = body_state(q, qd, ip[ARGUMENT])[2]
+    if r[PERIOD] > 0.0:
+        s = s - r[PERIOD] * math.floor(s / r[PERIOD])
     if s <= tab[0, 0]:
         f = tab[0, 1]
     elif s >= tab[n - 1, 0]:
@@ -98,17 +109,17 @@ def tabulated_force(t, q, qd, bj, ip, r, tab, Q, out):
                 hi = mid
         w = (s - tab[lo, 0]) / (tab[hi, 0] - tab[lo, 0])
         f = (1.0 - w) * tab[lo, 1] + w * tab[hi, 1]
-    fx = f * r[4]
-    fy = f * r[5]
-    px, py, sx, sy, vx, vy = point_kinematics(q, qd, bj, r[2], r[3])
+    fx = f * r[DIR_X]
+    fy = f * r[DIR_Y]
+    px, py, sx, sy, vx, vy = point_kinematics(q, qd, bj, r[XI_J], r[ETA_J])
     if bj >= 0:
         k = 3 * bj
         Q[k] += fx
         Q[k + 1] += fy
         Q[k + 2] += sx * fy - sy * fx
-    out[0] = px
-    out[1] = py
-    out[2] = s
-    out[3] = fx
-    out[4] = fy
-    out[5] = fx * vx + fy * vy
+    out[O_PX] = px
+    out[O_PY] = py
+    out[O_ARG] = s
+    out[O_FX] = fx
+    out[O_FY] = fy
+    out[O_POWER] = fx * vx + fy * vy

@@ -6,9 +6,12 @@ M q̈ = Q + Φ_qᵀ λ [T3], so Φ_qᵀ λ is the generalised constraint force. 
 constraint type is stated in its docstring and tested in ``tests/test_constraints.py``.
 
 Implementer contract for a new constraint type:
-1. a frozen dataclass below with its fields (they are the model-file schema) and ``rows``;
-2. a branch in :func:`eval_constraints` filling Φ, Φ_q, Φ_t and γ for its rows, citing its tag;
-3. an entry in :data:`CONSTRAINTS`; the finite-difference tests then cover it automatically.
+1. a frozen dataclass below with its fields (they are the model-file schema), ``rows``, its
+   ``REAL`` layout (the two points, then its own slots) and ``pack() -> {slot: value}``;
+2. a branch in :func:`eval_constraints` filling Φ, Φ_q, Φ_t and γ for its rows through the slot
+   constants of its layout, citing its tag;
+3. an entry in :data:`CONSTRAINTS` and an ``example()``; the registry contract tests (finite-
+   difference Jacobians, γ) then cover it automatically.
 """
 
 from __future__ import annotations
@@ -21,10 +24,18 @@ import numpy as np
 from numba import njit
 
 from ..kinematics import body_state, point_kinematics
+from ..layout import BODY_I, BODY_J, ETA_I, ETA_J, HEADER, POINTS, TYPE, XI_I, XI_J, Layout
 
 REVOLUTE = 0
 TRANSLATIONAL = 1
 ANGLE_DRIVER = 2
+INT = Layout(HEADER + ("row",))
+(ROW,) = INT.slots("row")
+REVOLUTE_REAL = Layout(POINTS)
+TRANSLATIONAL_REAL = Layout(POINTS + ("axis_x", "axis_y", "angle"))
+ANGLE_DRIVER_REAL = Layout(POINTS + ("phi0", "omega", "alpha"))
+AXIS_X, AXIS_Y, THETA0 = TRANSLATIONAL_REAL.slots("axis_x", "axis_y", "angle")
+PHI0, OMEGA, ALPHA = ANGLE_DRIVER_REAL.slots("phi0", "omega", "alpha")
 
 
 @dataclass(frozen=True)
@@ -45,6 +56,16 @@ class Revolute:
     """name of a point of body_j (coordinates in the body frame)"""
     code: ClassVar[int] = REVOLUTE
     rows: ClassVar[int] = 2
+    REAL: ClassVar[Layout] = REVOLUTE_REAL
+
+    def pack(self, angle_of) -> dict:
+        """Own slots of ``REAL`` beyond the two points (none)."""
+        return {}
+
+    @classmethod
+    def example(cls):
+        """A pin between two bodies' points "A" and "B" (for the contract tests)."""
+        return cls("a", "A", "b", "B")
 
 
 @dataclass(frozen=True)
@@ -71,6 +92,19 @@ class Translational:
     """locked relative angle θ₀ = φ_j − φ_i; None takes it from the initial guess [rad]"""
     code: ClassVar[int] = TRANSLATIONAL
     rows: ClassVar[int] = 2
+    REAL: ClassVar[Layout] = TRANSLATIONAL_REAL
+
+    def pack(self, angle_of) -> dict:
+        """Own slots of ``REAL``: unit guide axis [-] and locked angle θ₀ [rad]."""
+        ax = np.asarray(self.axis, dtype=float)
+        ax = ax / np.hypot(*ax)
+        th0 = self.angle if self.angle is not None else angle_of(self.body_j) - angle_of(self.body_i)
+        return {"axis_x": ax[0], "axis_y": ax[1], "angle": th0}
+
+    @classmethod
+    def example(cls):
+        """A slider along an oblique axis (for the contract tests)."""
+        return cls("a", "A", "b", "B", axis=(0.6, 0.8))
 
 
 @dataclass(frozen=True)
@@ -93,6 +127,18 @@ class AngleDriver:
     """constant angular acceleration [rad/s²]"""
     code: ClassVar[int] = ANGLE_DRIVER
     rows: ClassVar[int] = 1
+    REAL: ClassVar[Layout] = ANGLE_DRIVER_REAL
+    point_i: ClassVar[None] = None
+    point_j: ClassVar[None] = None
+
+    def pack(self, angle_of) -> dict:
+        """Own slots of ``REAL``: φ₀ [rad], ω [rad/s], α [rad/s²]."""
+        return {"phi0": self.phi0, "omega": self.omega, "alpha": self.alpha}
+
+    @classmethod
+    def example(cls):
+        """An accelerating driver (for the contract tests)."""
+        return cls("a", "b", phi0=0.3, omega=2.0, alpha=0.5)
 
 
 CONSTRAINTS = {"revolute": Revolute, "translational": Translational, "angle_driver": AngleDriver}
@@ -115,13 +161,13 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
     """Fill Φ, Φ_q (J, zeroed here), Φ_t and γ with Φ_q q̈ = γ [T4–T7]."""
     J[:, :] = 0.0
     for k in range(cint.shape[0]):
-        typ = cint[k, 0]
-        bi = cint[k, 1]
-        bj = cint[k, 2]
-        r = cint[k, 3]
+        typ = cint[k, TYPE]
+        bi = cint[k, BODY_I]
+        bj = cint[k, BODY_J]
+        r = cint[k, ROW]
         if typ == REVOLUTE:
-            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, 0], creal[k, 1])
-            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, 2], creal[k, 3])
+            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, XI_I], creal[k, ETA_I])
+            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, XI_J], creal[k, ETA_J])
             wi = body_state(q, qd, bi)[5]
             wj = body_state(q, qd, bj)[5]
             Phi[r] = pix - pjx
@@ -134,8 +180,8 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
             gam[r] = wi * wi * six - wj * wj * sjx
             gam[r + 1] = wi * wi * siy - wj * wj * sjy
         elif typ == TRANSLATIONAL:
-            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, 0], creal[k, 1])
-            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, 2], creal[k, 3])
+            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, XI_I], creal[k, ETA_I])
+            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, XI_J], creal[k, ETA_J])
             phii = body_state(q, qd, bi)[2]
             wi = body_state(q, qd, bi)[5]
             phij = body_state(q, qd, bj)[2]
@@ -143,8 +189,8 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
             ci = math.cos(phii)
             si = math.sin(phii)
             # local normal n' = ẑ × axis; n = A_i n'; Bn = B_i n' = ẑ × n  [T6]
-            nlx = -creal[k, 5]
-            nly = creal[k, 4]
+            nlx = -creal[k, AXIS_Y]
+            nly = creal[k, AXIS_X]
             nx = ci * nlx - si * nly
             ny = si * nlx + ci * nly
             bnx = -ny
@@ -172,7 +218,7 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
                 + wj * wj * (nx * sjx + ny * sjy)
                 - wi * wi * (nx * six + ny * siy)
             )
-            Phi[r + 1] = phij - phii - creal[k, 6]
+            Phi[r + 1] = phij - phii - creal[k, THETA0]
             Phit[r + 1] = 0.0
             gam[r + 1] = 0.0
             if bj >= 0:
@@ -182,9 +228,9 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
         elif typ == ANGLE_DRIVER:
             phii = body_state(q, qd, bi)[2]
             phij = body_state(q, qd, bj)[2]
-            phi0 = creal[k, 4]
-            om = creal[k, 5]
-            al = creal[k, 6]
+            phi0 = creal[k, PHI0]
+            om = creal[k, OMEGA]
+            al = creal[k, ALPHA]
             # Φ = φ_j − φ_i − (φ₀ + ωt + ½αt²), Φ_t = −(ω + αt), γ = α  [T7]
             Phi[r] = phij - phii - (phi0 + om * t + 0.5 * al * t * t)
             Phit[r] = -(om + al * t)
@@ -196,28 +242,23 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
 
 
 def constraint_table(constraints, body_index, point_of, angle_of):
-    """Flatten constraint dataclasses into (cint, creal, total rows).
+    """Pack constraint dataclasses into (cint, creal, total rows) through their layouts.
 
     ``body_index(name) -> int`` (−1 for ground), ``point_of(body, point) -> (ξ, η)`` [m],
     ``angle_of(body) -> φ`` of the initial guess [rad].
     """
-    cint = np.zeros((len(constraints), 4), dtype=np.int64)
-    creal = np.zeros((len(constraints), 8))
+    width = max(cls.REAL.width for cls in CONSTRAINTS.values())
+    cint = np.zeros((len(constraints), INT.width), dtype=np.int64)
+    creal = np.zeros((len(constraints), width))
     row = 0
     for k, c in enumerate(constraints):
-        cint[k, 0] = c.code
-        cint[k, 1] = body_index(c.body_i)
-        cint[k, 2] = body_index(c.body_j)
-        cint[k, 3] = row
+        INT.pack(
+            cint[k],
+            {"type": c.code, "body_i": body_index(c.body_i), "body_j": body_index(c.body_j), "row": row},
+        )
         row += c.rows
-        if isinstance(c, (Revolute, Translational)):
-            creal[k, 0:2] = point_of(c.body_i, c.point_i)
-            creal[k, 2:4] = point_of(c.body_j, c.point_j)
-        if isinstance(c, Translational):
-            ax = np.asarray(c.axis, dtype=float)
-            creal[k, 4:6] = ax / np.hypot(*ax)
-            th0 = c.angle if c.angle is not None else angle_of(c.body_j) - angle_of(c.body_i)
-            creal[k, 6] = th0
-        if isinstance(c, AngleDriver):
-            creal[k, 4:7] = (c.phi0, c.omega, c.alpha)
+        pi = point_of(c.body_i, c.point_i) if c.point_i is not None else (0.0, 0.0)
+        pj = point_of(c.body_j, c.point_j) if c.point_j is not None else (0.0, 0.0)
+        points = {"xi_i": pi[0], "eta_i": pi[1], "xi_j": pj[0], "eta_j": pj[1]}
+        type(c).REAL.pack(creal[k], {**points, **c.pack(angle_of)})
     return cint, creal, row
