@@ -16,12 +16,17 @@ POINTS = {("a", "p"): (0.3, -0.2), ("b", "p"): (-0.1, 0.25), ("ground", "p"): (0
 INDEX = {"ground": -1, "a": 0, "b": 1}
 
 
+MAKERS = {
+    Revolute: lambda bi, bj: Revolute(bi, "p", bj, "p"),
+    Translational: lambda bi, bj: Translational(bi, "p", bj, "p", axis=(0.6, 0.8), angle=0.3),
+    AngleDriver: lambda bi, bj: AngleDriver(bi, bj, phi0=0.2, omega=3.0, alpha=-1.5),
+}
+
+
 def make(kind, bi, bj):
-    if kind is Revolute:
-        return Revolute(bi, "p", bj, "p")
-    if kind is Translational:
-        return Translational(bi, "p", bj, "p", axis=(0.6, 0.8), angle=0.3)
-    return AngleDriver(bi, bj, phi0=0.2, omega=3.0, alpha=-1.5)
+    if kind not in MAKERS:  # a new constraint type needs its own instance here (and an example())
+        raise KeyError(f"no test instance for constraint type {kind.__name__}")
+    return MAKERS[kind](bi, bj)
 
 
 def evaluate(c, t, q, qd):

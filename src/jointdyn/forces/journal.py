@@ -151,6 +151,14 @@ class ClearanceJoint:
     def _film(self):
         return None
 
+    @classmethod
+    def example(cls):
+        """The benchmark's dry pin (R_B = 10.5 mm, R_J = 10 mm, Lankarani–Nikravesh) between
+        points "A" of body "a" and "B" of body "b" (contract tests)."""
+        from .contact_laws import LankaraniNikravesh
+
+        return cls("a", "A", "b", "B", 0.0105, 0.0100, contact=LankaraniNikravesh.example())
+
     def pack(self, tables: list, body_index) -> tuple[dict, dict, dict]:
         """Element-specific slots (ints, reals, blocks) of the declared layouts; film tables are
         appended to ``tables`` and referenced by index."""
@@ -230,6 +238,12 @@ class JournalBearing:
 
     def _film(self):
         return film_model(self.film)
+
+    @classmethod
+    def example(cls, film="alshaer2005"):
+        """The benchmark's lubricated pin (c = 0.5 mm, L = 40 mm, μ = 0.4 Pa·s) between points
+        "A" of body "a" and "B" of body "b" (contract tests)."""
+        return cls("a", "A", "b", "B", 0.0105, 0.0100, 0.04, 0.4, film=film)
 
     def validate(self):
         o = type(self).__name__

@@ -45,6 +45,11 @@ class SpringDamper:
     """output columns written by the kernel (name -> unit), force on body j, world frame"""
     MEMORY: ClassVar[dict[str, str]] = {}
 
+    @classmethod
+    def example(cls):
+        """A spring–damper between points "A" of body "a" and "B" of body "b" (contract tests)."""
+        return cls("a", "A", "b", "B", stiffness=1e4, damping=20.0, free_length=0.01)
+
     def pack(self, tables: list, body_index) -> tuple[dict, dict, dict]:
         """Element-specific slots (ints, reals, blocks) of the declared layouts."""
         return {}, {"stiffness": self.stiffness, "damping": self.damping, "free_length": self.free_length}, {}

@@ -68,6 +68,11 @@ class TabulatedForce:
         if not (math.isfinite(self.period) and self.period >= 0):
             raise ValueError(f"{o}.period = {self.period!r} [s or rad]: must be ≥ 0")
 
+    @classmethod
+    def example(cls):
+        """A gas-force-like table on point "B" of body "b", argument the angle of body "a"."""
+        return cls("b", "B", x=(0.0, 1.0, 2.5, 6.3), y=(0.0, 300.0, 50.0, 0.0), argument="a", period=6.3)
+
     def pack(self, tables: list, body_index) -> tuple[dict, dict, dict]:
         """Element-specific slots (ints, reals, blocks); the (x, y) table is appended to ``tables``."""
         tables.append(np.column_stack([self.x, self.y]).astype(float))
