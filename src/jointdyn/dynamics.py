@@ -151,22 +151,18 @@ def rhs(t, y, mem, P, ydot):
 
 
 @njit(cache=True)
-def project(t, y, P, tol):
-    """Project y = [q, q̇] onto Φ = 0 (Gauss–Newton, M-weighted) and Φ̇ = 0 [T11].
-
-    Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
-    minv, cint, creal, m = P.minv, P.cint, P.creal, P.n_rows
-    if m == 0:
-        return 0.0
-    n = y.shape[0] // 2
-    q = y[:n]
-    qd = y[n:]
+def project_positions(t, q, qd, minv, cint, creal, m, tol, max_iter):
+    """Gauss–Newton projection of q onto Φ(q, t) = 0, M-weighted minimal correction
+    q ← q − M⁻¹Φ_qᵀ(Φ_q M⁻¹Φ_qᵀ)⁻¹Φ, in place [T11]. Returns max |Φ| [m or rad] at the last
+    evaluation (≤ tol when converged, else after ``max_iter`` corrections); −1.0 if the Schur
+    complement is singular."""
+    n = q.shape[0]
     Phi = np.empty(m)
     J = np.empty((m, n))
     Phit = np.empty(m)
     gam = np.empty(m)
     res = 0.0
-    for _ in range(6):
+    for _ in range(max_iter):
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
         res = 0.0
         for r in range(m):
@@ -182,6 +178,18 @@ def project(t, y, P, tol):
             for r in range(m):
                 s += J[r, c] * x[r]
             q[c] -= minv[c] * s
+    return res
+
+
+@njit(cache=True)
+def project_velocities(t, q, qd, minv, cint, creal, m):
+    """M-weighted projection of q̇ onto Φ_q q̇ + Φ_t = 0, in place [T11]. Returns False if the
+    Schur complement is singular."""
+    n = q.shape[0]
+    Phi = np.empty(m)
+    J = np.empty((m, n))
+    Phit = np.empty(m)
+    gam = np.empty(m)
     eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
     v = np.empty(m)
     for r in range(m):
@@ -191,12 +199,32 @@ def project(t, y, P, tol):
         v[r] = s
     S = _schur(J, minv, m, n)
     if not cholesky_solve(S, v):
-        return -1.0
+        return False
     for c in range(n):
         s = 0.0
         for r in range(m):
             s += J[r, c] * v[r]
         qd[c] -= minv[c] * s
+    return True
+
+
+@njit(cache=True)
+def project(t, y, P, tol):
+    """Project y = [q, q̇] onto Φ = 0 (at most 6 Gauss–Newton corrections) and Φ̇ = 0 [T11];
+    the one projection used by the integrators, the output samples and model assembly.
+
+    Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
+    m = P.n_rows
+    if m == 0:
+        return 0.0
+    n = y.shape[0] // 2
+    q = y[:n]
+    qd = y[n:]
+    res = project_positions(t, q, qd, P.minv, P.cint, P.creal, m, tol, 6)
+    if res < 0.0:
+        return -1.0
+    if not project_velocities(t, q, qd, P.minv, P.cint, P.creal, m):
+        return -1.0
     return res
 
 

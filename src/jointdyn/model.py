@@ -16,6 +16,7 @@ from typing import Any
 
 import numpy as np
 
+from .dynamics import project_positions, project_velocities
 from .errors import ModelError
 from .forces import elements as fe
 from .joints.constraints import CONSTRAINTS, Revolute, constraint_table, eval_constraints
@@ -253,38 +254,30 @@ class Model:
 
 
 def _assemble(y, cint, creal, m, minv, tol, max_iter):
-    """Position analysis (Gauss–Newton, M-weighted) and velocity analysis in place [T11]."""
+    """Position analysis (Gauss–Newton, M-weighted) and velocity analysis in place, with the
+    compiled projection the integrators use [T11]."""
     if m == 0:
         return
     n = y.shape[0] // 2
     q, qd = y[:n], y[n:]
-    Phi, J, Phit, gam = np.empty(m), np.empty((m, n)), np.empty(m), np.empty(m)
-    W = np.diag(minv)
-    res = np.inf
-    for _ in range(max_iter):
-        eval_constraints(0.0, q, qd, cint, creal, Phi, J, Phit, gam)
-        res = np.max(np.abs(Phi))
-        if res <= tol:
-            break
-        S = J @ W @ J.T
-        try:
-            q -= W @ J.T @ np.linalg.solve(S, Phi)
-        except np.linalg.LinAlgError:
-            raise ModelError(
-                "position analysis failed: the constraint Jacobian is singular "
-                "(redundant constraints or a locked configuration)"
-            ) from None
+    res = project_positions(0.0, q, qd, minv, cint, creal, m, tol, max_iter)
+    if res < 0.0:
+        raise ModelError(
+            "position analysis failed: the constraint Jacobian is singular "
+            "(redundant constraints or a locked configuration)"
+        )
     if not res <= tol:
         raise ModelError(
             f"the mechanism cannot be assembled: position analysis did not converge "
             f"in {max_iter} iterations (max |Φ| = {res:.3g} [m or rad]); check lengths "
             f"and the initial guesses of body positions/angles"
         )
+    Phi, J, Phit, gam = np.empty(m), np.empty((m, n)), np.empty(m), np.empty(m)
     eval_constraints(0.0, q, qd, cint, creal, Phi, J, Phit, gam)
-    S = J @ W @ J.T
-    if np.linalg.matrix_rank(S) < m:
+    if np.linalg.matrix_rank(J @ np.diag(minv) @ J.T) < m or not project_velocities(
+        0.0, q, qd, minv, cint, creal, m
+    ):
         raise ModelError(
             "the constraint Jacobian is rank deficient at the assembled position "
             "(redundant constraints or a singular configuration)"
         )
-    qd -= W @ J.T @ np.linalg.solve(S, J @ qd + Phit)
