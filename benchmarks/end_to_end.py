@@ -1,0 +1,172 @@
+"""What the user waits for: ``simulate()`` and the CLI end to end, side by side in one run.
+
+Usage: ``python -m benchmarks.end_to_end [--quick] [--no-cli] [--cases perfect,dry,...]``
+
+Per case (the benchmark slider-crank, 4 crank revolutions, the README's sampling of 720 samples
+per revolution = 2881 samples, the library defaults unless a solver is named):
+
+* ``simulate`` — wall time of the ``simulate(system, config)`` call, median of N warm runs
+  (kernels compiled and loaded), split into the integrator's own time (``Results.wall_time``) and
+  the rest (output samples: accelerations, multipliers, element outputs, drift);
+* ``save`` — writing ``results.nc`` (netCDF) and the CSV time series of the run;
+* ``error`` — max |ΔM|/peak of the crank moment against a converged run of the same model
+  (rtol 1e-11, same sampling);
+* ``cli warm`` / ``cli cold`` — ``jointdyn run slider-crank --joint J --revs 4`` in a fresh
+  process (warm: JIT cache filled; cold: empty JIT and table caches), with the process's peak RSS.
+
+Every ratio in the README's speed section is computed from rows of one invocation of this
+command, on one machine, in one process (``simulate`` rows) or back to back (CLI rows).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import os
+import resource
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from jointdyn import post
+from jointdyn.models.slider_crank import SPEED, slider_crank
+from jointdyn.simulate import SimConfig, simulate
+
+REVS = 4
+N_OUT = REVS * 720 + 1
+T_END = REVS * 2 * math.pi / SPEED
+ROOT = Path(__file__).resolve().parents[1]
+
+# case: (slider_crank kwargs, solver or None for the default, rtol or None for the default)
+CASES = {
+    "perfect": ({"joint": "perfect"}, None, None),
+    "dry": ({"joint": "dry"}, None, None),
+    "alshaer2005": ({"joint": "alshaer2005"}, None, None),
+    "alshaer2005 scipy-radau 1e-7": ({"joint": "alshaer2005"}, "scipy-radau", 1e-7),
+    "alshaer2005 c=0.05mm": ({"joint": "alshaer2005", "clearance": 0.05e-3}, None, None),
+    "finite": ({"joint": "finite"}, None, None),
+}
+CLI_JOINTS = ("perfect", "dry", "alshaer2005")
+
+
+def _config(solver, rtol) -> SimConfig:
+    kw = {} if solver is None else {"solver": solver}
+    if rtol is not None:
+        kw |= {"rtol": rtol, "atol": rtol * 1e-3}
+    return SimConfig(t_end=T_END, n_out=N_OUT, **kw)
+
+
+def _save(res, d: Path) -> float:
+    t0 = time.perf_counter()
+    res.save(d / "results.nc")
+    M = post.driving_moment(res)
+    np.savetxt(d / "timeseries.csv", np.column_stack([res.t, M]), delimiter=",", header="t,crank_moment")
+    return time.perf_counter() - t0
+
+
+def simulate_row(name, repeat):
+    kw, solver, rtol = CASES[name]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        system = slider_crank(**kw).compile()
+    cfg = _config(solver, rtol)
+    ref = simulate(system, SimConfig(t_end=T_END, n_out=N_OUT, solver=cfg.solver, rtol=1e-11, atol=1e-14))
+    simulate(system, cfg)  # JIT warm-up
+    totals, integ, res = [], [], None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        res = simulate(system, cfg)
+        totals.append(time.perf_counter() - t0)
+        integ.append(res.wall_time)
+    with tempfile.TemporaryDirectory() as d:
+        save = _save(res, Path(d))
+    M, Mr = post.driving_moment(res), post.driving_moment(ref)
+    return {
+        "case": name,
+        "solver": res.config["solver"],
+        "rtol": cfg.rtol,
+        "simulate_s": statistics.median(totals),
+        "integrate_s": statistics.median(integ),
+        "outputs_s": statistics.median(totals) - statistics.median(integ),
+        "save_s": save,
+        "rhs": res.stats["rhs_evaluations"],
+        "error": float(np.abs(M - Mr).max() / np.abs(Mr).max()),
+    }
+
+
+def cli_row(joint):
+    """(warm [s], cold [s], peak RSS of the warm run [MB]) of the CLI run in fresh processes."""
+    exe = [sys.executable, "-m", "jointdyn", "run", "slider-crank", "--joint", joint, "--revs", str(REVS)]
+    out = {}
+    with tempfile.TemporaryDirectory() as cache:
+        cold_env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(cache, "numba"), XDG_CACHE_HOME=cache)
+        for label, env in (("cold", cold_env), ("warm", cold_env), ("warm2", cold_env)):
+            with tempfile.TemporaryDirectory() as d:
+                before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+                t0 = time.perf_counter()
+                subprocess.run(
+                    exe + ["--out", os.path.join(d, "o")], check=True, env=env, cwd=ROOT, capture_output=True
+                )
+                out[label] = time.perf_counter() - t0
+                out[label + "_rss"] = (
+                    max(before, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss) / 1024
+                )
+    warm = min(out["warm"], out["warm2"])
+    return {
+        "case": f"cli {joint}",
+        "cli_warm_s": warm,
+        "cli_cold_s": out["cold"],
+        "cold/warm": out["cold"] / warm,
+        "rss_MB": out["warm_rss"],
+    }
+
+
+def _table(rows, cols):
+    lines = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    for r in rows:
+        cells = [f"{r[c]:.4g}" if isinstance(r.get(c), float) else str(r.get(c, "–")) for c in cols]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.end_to_end")
+    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--quick", action="store_true", help="1 repeat, perfect and alshaer2005 only, no CLI")
+    ap.add_argument("--no-cli", action="store_true")
+    a = ap.parse_args(argv)
+    names = ["perfect", "alshaer2005"] if a.quick else a.cases.split(",")
+    rows = [simulate_row(n, 1 if a.quick else a.repeat) for n in names]
+    print(
+        _table(
+            rows,
+            ["case", "solver", "rtol", "simulate_s", "integrate_s", "outputs_s", "save_s", "rhs", "error"],
+        )
+    )
+    by = {r["case"]: r for r in rows}
+    if "alshaer2005" in by and "alshaer2005 scipy-radau 1e-7" in by:
+        d, s = by["alshaer2005"], by["alshaer2005 scipy-radau 1e-7"]
+        print(
+            f"\nπ-film defaults vs the scipy-Radau path (rtol 1e-7), same process: "
+            f"{s['simulate_s'] / d['simulate_s']:.2f}× faster end to end, "
+            f"errors {d['error']:.2g} vs {s['error']:.2g}"
+        )
+    if "perfect" in by:
+        p = by["perfect"]
+        print(f"perfect: outputs {p['outputs_s'] / N_OUT * 1e6:.2f} µs per sample; save {p['save_s']:.3f} s")
+    if not (a.quick or a.no_cli):
+        cli = [cli_row(j) for j in CLI_JOINTS]
+        print()
+        print(_table(cli, ["case", "cli_warm_s", "cli_cold_s", "cold/warm", "rss_MB"]))
+    return rows
+
+
+if __name__ == "__main__":
+    main()
