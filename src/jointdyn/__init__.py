@@ -1,4 +1,16 @@
-"""jointdyn: planar multibody dynamics with ideal, clearance and lubricated joints."""
+"""jointdyn: planar multibody dynamics with ideal, clearance and lubricated joints.
+
+The front door::
+
+    from jointdyn import SimConfig, load, simulate, slider_crank
+
+    res = simulate(slider_crank("alshaer2005").compile(), SimConfig(t_end=0.048, n_out=2881))
+    res.save("run.nc")
+    res = load("run.nc")  # Results again: res.element(...), jointdyn.post.* work on it
+
+Note: ``jointdyn.simulate`` is the function; the module is ``sys.modules["jointdyn.simulate"]``
+(``from jointdyn.simulate import SimConfig`` keeps working).
+"""
 
 from __future__ import annotations
 
@@ -33,3 +45,38 @@ def _numba_cache_dir() -> None:
 
 
 _numba_cache_dir()
+
+from importlib.metadata import PackageNotFoundError as _PNF  # noqa: E402
+from importlib.metadata import version as _v  # noqa: E402
+
+from . import post  # noqa: E402
+from .config import load_model  # noqa: E402
+from .errors import ModelError, PhysicsWarning, SimulationError  # noqa: E402
+from .model import Model  # noqa: E402
+from .models.slider_crank import slider_crank  # noqa: E402
+from .results import Results  # noqa: E402
+from .simulate import SimConfig, simulate  # noqa: E402
+from .system import System  # noqa: E402
+
+try:
+    __version__ = _v("jointdyn")
+except _PNF:  # pragma: no cover - running from an uninstalled source tree
+    __version__ = "unknown"
+
+load = Results.load
+
+__all__ = [
+    "Model",
+    "ModelError",
+    "PhysicsWarning",
+    "Results",
+    "SimConfig",
+    "SimulationError",
+    "System",
+    "__version__",
+    "load",
+    "load_model",
+    "post",
+    "simulate",
+    "slider_crank",
+]
