@@ -349,10 +349,10 @@ class Results:
             system=system,
             t=ds["time"].values,
             y=np.concatenate([ds["q"].values, ds["qd"].values], axis=1),
-            mem=mem.reshape(nt, ne, -1),
+            mem=_shaped(mem, (nt, ne, system.mem0.shape[-1])),
             qdd=ds["qdd"].values,
-            lam=ds["lam"].values.reshape(nt, -1),
-            eout=ds["element_outputs"].values.reshape(nt, ne, -1),
+            lam=_shaped(ds["lam"].values, (nt, system.n_rows)),
+            eout=_shaped(ds["element_outputs"].values, (nt, ne, ds.sizes.get("output", len(OUT_COLUMNS)))),
             drift=np.stack([ds["drift_position"].values, ds["drift_velocity"].values], axis=1),
             stats=json.loads(ds.attrs.get("stats", "{}")),
             wall_time=float(ds.attrs.get("wall_time_s", math.nan)),
@@ -412,6 +412,11 @@ class Results:
 def _labels(names, width: int, prefix: str) -> list[str]:
     """``names`` cut or padded (``prefix0``, ``prefix1``, …) to ``width`` labels."""
     return [names[i] if i < len(names) else f"{prefix}{i}" for i in range(width)]
+
+
+def _shaped(a: np.ndarray, shape: tuple) -> np.ndarray:
+    """``a`` as stored, or reshaped to ``shape`` when a dimension was empty in the file."""
+    return a if a.ndim == len(shape) else np.asarray(a).reshape(shape)
 
 
 def _lambda_units(c) -> list[str]:
