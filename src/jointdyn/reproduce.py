@@ -93,14 +93,23 @@ def run_case(case: Case, revs: float, progress=None):
 
 def _png(fig) -> bytes:
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=110)
+    fig.savefig(buf, format="png", dpi=130)
     return buf.getvalue()
 
 
-def _last_rev(cols, revs):
-    n = len(cols["t"])
-    per = int(round((n - 1) / revs)) if revs >= 1 else n - 1
-    return slice(max(0, n - 1 - per), n)
+PAPER = ("perfect", "dry", "ott", "alshaer2005")
+#: one colour per case, the same in every figure
+COLORS = {"perfect": "k", "dry": "tab:red", "ott": "tab:orange", "alshaer2005": "tab:blue"}
+
+
+def _last(res, revs: float):
+    """The last revolution (or the whole run when it is shorter)."""
+    return res.last_revolutions(min(1.0, revs))
+
+
+def _deg(res):
+    a = res.crank_angle()
+    return np.degrees(a - a[0])
 
 
 def figures(runs: dict, revs: float) -> dict[str, bytes]:
@@ -111,70 +120,139 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     import matplotlib.pyplot as plt
 
     figs = {}
-    names = [n for n in ("perfect", "dry", "ott", "alshaer2005") if n in runs]
+    names = [n for n in PAPER if n in runs]
+    last = {n: _last(runs[n][0], revs) for n in runs}
+    one = "last revolution" if revs >= 1 else f"{revs:g} revolution"
     for n in names:
-        fig, ax = plt.subplots(figsize=(7, 3.6))
-        cols = runs[n][1]
-        plots.moment_vs_angle(cols["crank_angle"], cols["crank_moment"], ax=ax)
-        ax.set_title(f"crank driving moment — {runs[n][3].label}")
+        fig, ax = plt.subplots(figsize=(8, 3.8))
+        res = runs[n][0]
+        plots.moment_vs_angle(
+            res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=COLORS[n]
+        )
+        ax.set_title(f"crank driving moment, {revs:g} revolutions — {runs[n][3].label}", fontsize=10)
         fig.tight_layout()
         figs[f"moment_{n}.png"] = _png(fig)
         plt.close(fig)
-    fig, ax = plt.subplots(figsize=(8, 4.2))
-    for n in names:
-        cols = runs[n][1]
-        s = _last_rev(cols, revs)
-        ang = cols["crank_angle"][s] - cols["crank_angle"][s][0]
-        plots.moment_vs_angle(ang, cols["crank_moment"][s], ax=ax, label=n)
-    ax.set_title("crank driving moment over the last revolution")
-    ax.legend()
+    # overlay: smooth cases on their own scale, the dry joint's spikes in a panel of their own
+    smooth = [n for n in names if n != "dry"]
+    panels = 2 if "dry" in names else 1
+    fig, axs = plt.subplots(panels, 1, figsize=(8, 3.6 * panels), sharex=True, squeeze=False)
+    for n in smooth:
+        r = last[n]
+        axs[0, 0].plot(
+            _deg(r),
+            post.driving_moment(r),
+            color=COLORS[n],
+            lw=1.2 if n != "perfect" else 1.8,
+            ls="--" if n == "perfect" else "-",
+            label=runs[n][3].label,
+            zorder=3 if n == "perfect" else 2,
+        )
+    axs[0, 0].set_title(f"crank driving moment, {one}", fontsize=10)
+    if panels == 2:
+        for n in ("perfect", "dry"):
+            if n in runs:
+                r = last[n]
+                axs[1, 0].plot(
+                    _deg(r),
+                    post.driving_moment(r),
+                    color=COLORS[n],
+                    lw=1.0,
+                    ls="--" if n == "perfect" else "-",
+                    label=runs[n][3].label,
+                )
+        axs[1, 0].set_title("dry clearance joint (own scale: impact spikes)", fontsize=10)
+    for ax in axs[:, 0]:
+        ax.set_ylabel("moment [N·m]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8, loc="lower left")
+    axs[-1, 0].set_xlabel(f"crank angle [deg], {one}")
+    axs[-1, 0].set_xlim(0, 360 * min(1.0, revs))
+    plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
     fig.tight_layout()
     figs["moment_overlay.png"] = _png(fig)
     plt.close(fig)
     beyond = [n for n in runs if n not in names]
     if beyond:
-        fig, ax = plt.subplots(figsize=(8, 4.2))
+        fig, ax = plt.subplots(figsize=(8, 4.4))
         for n in ["perfect"] + beyond if "perfect" in runs else beyond:
-            cols = runs[n][1]
-            s = _last_rev(cols, revs)
-            ang = cols["crank_angle"][s] - cols["crank_angle"][s][0]
-            plots.moment_vs_angle(ang, cols["crank_moment"][s], ax=ax, label=n)
-        ax.set_title("beyond the paper: clearance and viscosity (last revolution)")
-        ax.legend(fontsize=8)
+            r = last[n]
+            ax.plot(
+                _deg(r),
+                post.driving_moment(r),
+                lw=1.0,
+                label=runs[n][3].label,
+                color="k" if n == "perfect" else None,
+                ls="--" if n == "perfect" else "-",
+            )
+        ax.set_title(f"beyond the paper: clearance, viscosity, finite length ({one})", fontsize=10)
+        ax.set_xlabel(f"crank angle [deg], {one}")
+        ax.set_ylabel("moment [N·m]")
+        ax.set_xlim(0, 360 * min(1.0, revs))
+        plots._angle_ticks(ax, 360 * min(1.0, revs))
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8, loc="lower left")
         fig.tight_layout()
         figs["moment_beyond.png"] = _png(fig)
         plt.close(fig)
-    for n in [n for n in runs if "ex_over_c" in runs[n][1]]:
-        fig, ax = plt.subplots(figsize=(4.6, 4.6))
-        cols = runs[n][1]
-        plots.journal_orbit(cols["ex_over_c"], cols["ey_over_c"], ax=ax)
-        ax.set_title(f"journal centre path — {n}", fontsize=9)
+    for n in [n for n in runs if "piston_pin" in runs[n][0].journals()]:
+        fig, ax = plt.subplots(figsize=(4.8, 5.2))
+        ex, ey = last[n].orbit("piston_pin", frame="bushing")
+        plots.journal_orbit(
+            ex, ey, ax=ax, frame="rod", color=COLORS.get(n, "tab:blue"), label="journal centre"
+        )
+        ax.set_title(f"journal centre path, {one}\n{runs[n][3].label}", fontsize=9)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
         fig.tight_layout()
         figs[f"orbit_{n}.png"] = _png(fig)
         plt.close(fig)
     lub = [n for n in runs if runs[n][3].joint not in ("perfect", "dry")]
     if lub:
-        fig, ax = plt.subplots(figsize=(8, 4))
+        fig, ax = plt.subplots(figsize=(8, 4.4))
         for n in lub:
-            cols = runs[n][1]
+            r = last[n]
             plots.series_vs_angle(
-                cols["crank_angle"], cols["h_min"] * 1e6, "minimum film thickness [µm]", ax=ax, label=n
+                np.radians(_deg(r)),
+                r.element("piston_pin", "h_min") * 1e6,
+                "minimum film thickness $h_{min}$ [µm]",
+                ax=ax,
+                label=runs[n][3].label,
+                color=COLORS.get(n),
             )
         ax.set_yscale("log")
-        ax.legend(fontsize=8)
+        from matplotlib.ticker import FuncFormatter
+
+        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        ax.set_xlabel(f"crank angle [deg], {one}")
+        ax.set_title(f"minimum film thickness, {one}", fontsize=10)
+        ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False)
         fig.tight_layout()
         figs["film_thickness.png"] = _png(fig)
         plt.close(fig)
-    imp = [n for n in runs if "joint_force" in runs[n][1]]
+    imp = [n for n in names if n != "perfect" and "piston_pin" in runs[n][0].journals()]
     if imp:
-        fig, ax = plt.subplots(figsize=(8, 4))
-        for n in imp:
-            cols = runs[n][1]
-            plots.series_vs_angle(
-                cols["crank_angle"], cols["joint_force"], "joint force on the journal [N]", ax=ax, label=n
-            )
-        ax.set_yscale("symlog", linthresh=10.0)
-        ax.legend(fontsize=8)
+        fig, axs = plt.subplots(len(imp), 1, figsize=(8, 2.4 * len(imp) + 0.6), sharex=True, squeeze=False)
+        for ax, n in zip(axs[:, 0], imp):
+            r = last[n]
+            f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
+            ax.plot(_deg(r), f, color=COLORS[n], lw=0.9)
+            if "perfect" in runs:
+                p = last["perfect"]
+                ax.plot(
+                    _deg(p),
+                    np.hypot(*post.joint_reaction(p, "piston_pin").T),
+                    "k--",
+                    lw=0.8,
+                    label="perfect joint (reaction)",
+                )
+                ax.legend(fontsize=7, loc="upper right")
+            ax.set_title(runs[n][3].label, fontsize=9)
+            ax.set_ylabel("|F| [N]")
+            ax.grid(True, alpha=0.3)
+        axs[-1, 0].set_xlabel(f"crank angle [deg], {one}")
+        axs[-1, 0].set_xlim(0, 360 * min(1.0, revs))
+        plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
+        fig.suptitle("force on the journal (piston pin)", fontsize=10)
         fig.tight_layout()
         figs["joint_force.png"] = _png(fig)
         plt.close(fig)
