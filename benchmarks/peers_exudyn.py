@@ -2,7 +2,7 @@
 
 Written from Exudyn's public Python API only (no jointdyn code is used to build or solve the
 model), so that the numbers compare two independent implementations of the same mechanism
-(``/work/shared/spec/benchmark.md``):
+(benchmark definition, docs/theory.md [T160]):
 
 * crank (0.05 m, 0.30 kg, I 1e-4), rod (0.12 m, 0.21 kg, I 2.5e-4), slider (0.14 kg, I 1e-4),
   CoMs at mid-length, slider on the global x axis through the crank pivot, gravity 9.81 m/s^2

@@ -24,7 +24,7 @@ def test_run_perfect_writes_files(tmp_path):
         rows = list(csv.DictReader(f))
     assert list(rows[0])[:3] == ["t", "crank_angle", "crank_moment"]
     M = np.array([float(r["crank_moment"]) for r in rows])
-    assert abs(M.max() - 138.62) < 0.01  # spec/benchmark.md peak
+    assert abs(M.max() - 138.62) < 0.01  # benchmark peak [T160]
     summary = json.loads((out / "summary.json").read_text())
     assert summary["peak_moment"] == pytest.approx(M.max(), rel=1e-9)  # CSV keeps 10 digits
     ds = xr.load_dataset(out / "results.nc", engine="h5netcdf")
@@ -68,7 +68,7 @@ def test_film_force_csv_matches_python(tmp_path):
     ref = film_forces(
         "alshaer2005", [0.5, 0.9], [20, -5], 0.3, [100, 50], 523.6, 0, 0.4, 0.04, 0.01, [5e-4, 5e-5]
     )
-    # spec §8.2b case 7: F_r = −78.9922102, F_t = 109.959985 N
+    # reference table [T164] (docs/theory.md), case 7: F_r = −78.9922102, F_t = 109.959985 N
     assert float(rows[0]["Fr"]) == -78.9922102 or abs(float(rows[0]["Fr"]) + 78.9922102) < 1e-6
     for i in range(2):
         for k in ("Fr", "Ft", "Fx", "Fy"):

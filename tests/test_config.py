@@ -67,7 +67,7 @@ def test_benchmark_files_describe_the_builder(joint):
 def test_file_and_builder_give_the_same_crank_moment(joint, t_end):
     """Half a revolution (perfect) and the first ~1/3 revolution with its first impacts (dry)."""
     # The file's slider guess x = 0.17 is 1 ulp from the builder's r + l = 0.16999999999999998.
-    # The dry case is chaotic (spec/benchmark.md): that ulp alone grows to 0.25 N·m by t = 4 ms
+    # The dry case is chaotic ([T162]): that ulp alone grows to 0.25 N·m by t = 4 ms
     # (measured), so the guess is set to the builder's float to compare the file path itself.
     model, config = load_model(
         EXAMPLES / f"slider_crank_{joint}.toml",

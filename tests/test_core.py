@@ -29,7 +29,7 @@ def test_driving_moment_matches_inverse_dynamics(crank_system, solver):
     peak = np.abs(ref).max()
     # issue 2: max error ≤ 1e-6 of the peak at tight tolerance
     assert np.abs(M - ref).max() <= 1e-6 * peak
-    # spec/benchmark.md: ±138.5 N·m class; independent Exudyn model +138.62/−138.42 with gravity
+    # benchmark [T160]: ±138.5 N·m class; independent Exudyn model +138.62/−138.42 with gravity
     assert abs(M.max() - 138.62) < 0.01 and abs(M.min() + 138.42) < 0.01
     # projection after each accepted step keeps drift at round-off level (≪ 1e-3·c = 5e-8 m)
     assert res.drift[:, 0].max() < 1e-11 and res.drift[:, 1].max() < 1e-9

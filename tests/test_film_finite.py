@@ -47,7 +47,7 @@ def test_long_bearing_limit_for_the_wedge_film():
     """Steady wedge (ψ = 0): the finite film approaches the long π-film (= half-Sommerfeld) as
     L/D grows: measured 42 %, 11.5 %, 5.0 % at L/D = 2, 8, 32 (end leakage ∝ D/L). For squeeze
     states the Gümbel film (p ≥ 0 clipped from the full film with ambient ends) and the π-film
-    (spec §2.3: Sommerfeld pressure shifted to vanish at θ₁, θ₁+π) are different models: at
+    ([T22]: Sommerfeld pressure shifted to vanish at θ₁, θ₁+π) are different models: at
     L/D = 32 they still differ by 5–23 % (ψ = 0.5, −0.5), documented in docs/theory.md [T38]."""
     d = [
         np.linalg.norm(direct(0.5, 0.0, LD) - closed(pi_film_force, 0.5, 0.0, LD))

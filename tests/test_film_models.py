@@ -1,9 +1,9 @@
 """Film models ``ott`` and ``alshaer2005`` (π-film) against independent references:
 
-* the spec's reference tables (spec/bearing_forces.md §8, computed outside the project);
+* the reference tables of docs/theory.md [T164] (computed outside the project, transcribed below);
 * the numerical long-bearing Reynolds solver ``jointdyn.reynolds`` (fixed frame, quadrature,
   film start by root finding; it shares no formula with the kernels);
-* the classic closed-form limits of spec §5 and the edge cases of spec §6.
+* the classic closed-form limits [T28] and the edge cases [T24].
 
 Every tolerance says where its number comes from. ``python tests/test_film_models.py`` prints
 the measured agreement (max relative errors).
@@ -31,7 +31,7 @@ TABLE = np.zeros((1, 2))  # film kernels take a 2-D table slice (used by tabulat
 NO_PARAMS = np.zeros(1)  # the model's own parameter block (none of these models has parameters)
 KERNELS = {"ott": ott_force, "alshaer2005": pi_film_force}
 
-# ---- spec §8: parameters, states (§8.1) and reference values (§8.2, §8.2b, §8.3, §8.3b) --------
+# ---- [T164]: parameters, states and reference values (6- and 9-digit tables) -----------------------
 MU, L, R, OMEGA, GAMMA = 0.4, 0.04, 0.01, 523.6, 0.3  # [Pa·s, m, m, rad/s, rad]
 # (ξ [-], ξ̇ [1/s], γ̇ [rad/s], c [m]); fixed bearing: ω_J = ω, ω_B = 0, Ω = ω − 2γ̇
 STATES = [
@@ -174,7 +174,7 @@ TABLES_XY = {"alshaer2005": PI_XY, "ott": OTT_XY}
 
 
 def k_of(mu, R, L, c):
-    """force scale k = μLR³/c² [N·s] (spec §1)"""
+    """force scale k = μLR³/c² [N·s] (docs/theory.md conventions)"""
     return mu * L * R**3 / c**2
 
 
@@ -196,7 +196,7 @@ def kernel(model, xi, xi_dot, Omega, c, mu=MU, R=R, L=L):
 def test_spec_table_9_digits(model, case):
     xi, xd, gd, c = STATES[case]
     got = kernel(model, xi, xd, OMEGA - 2 * gd, c)
-    # the tables carry 9 significant digits: rounding ≤ 5e-9 per component (spec §8, "suggested
+    # the tables carry 9 significant digits: rounding ≤ 5e-9 per component ([T164], "suggested
     # test tolerances: rel 1e-8 of |F|")
     assert rel(got, TABLES_9[model][case]) <= 1e-8
 
@@ -206,7 +206,7 @@ def test_spec_table_global_components(model):
     xi, xd, gd, c = (np.array(v, float) for v in zip(*STATES))
     F = film_forces(model, xi, xd, GAMMA, gd, OMEGA, 0.0, MU, L, R, c)
     for i, (fx, fy) in enumerate(TABLES_XY[model]):
-        # 6 significant digits: rounding ≤ 5e-6 of each component ≤ 5e-6 |F| (spec §8 suggests 1e-5)
+        # 6 significant digits: rounding ≤ 5e-6 of each component ≤ 5e-6 |F| ([T164] suggests 1e-5)
         mag = math.hypot(fx, fy)
         assert abs(F["Fx"][i] - fx) <= 1e-5 * mag and abs(F["Fy"][i] - fy) <= 1e-5 * mag, i
     # the front and the compiled kernel are the same function
@@ -288,18 +288,18 @@ def pi_film_vs_reynolds(n=1000):
 
 def test_pi_film_matches_numerical_reynolds():
     errs = pi_film_vs_reynolds(1000)
-    # Budget: the closed form is good to ~3e-14 |F| (spec §3.3); the quadrature (epsrel 1e-13) loses
+    # Budget: the closed form is good to ~3e-14 |F| ([T163]); the quadrature (epsrel 1e-13) loses
     # up to the cancellation factor ∫|p′|/|F| ~ (1−ξ²)^{-3/2} ≈ 1.1e4 at ξ = 0.999 (separating
     # motion), i.e. ≲ 1e-9, and the root-found film start adds an error of the same order.
     # 1e-8 bounds all of it with a 10× margin (measured max 5e-11: `python tests/test_film_models.py`).
     assert errs.max() <= 1e-8, (errs.argmax(), errs.max())
 
 
-# ---- classic limits (spec §5) --------------------------------------------------------------------
+# ---- classic limits [T28] --------------------------------------------------------------------------
 
 
 def full_sommerfeld(xi, xi_dot, Omega, k):
-    """2π film (spec §5): F_r = −12πkξ̇/(1−ξ²)^{3/2}, F_t = 12πkξΩ/[(2+ξ²)√(1−ξ²)]"""
+    """2π film [T28]: F_r = −12πkξ̇/(1−ξ²)^{3/2}, F_t = 12πkξΩ/[(2+ξ²)√(1−ξ²)]"""
     w = 1 - xi**2
     return -12 * math.pi * k * xi_dot / w**1.5, 12 * math.pi * k * xi * Omega / ((2 + xi**2) * math.sqrt(w))
 
@@ -314,13 +314,13 @@ def test_steady_half_sommerfeld(model, xi, Omega):
         -12 * k * xi**2 * abs(Omega) / ((2 + xi**2) * w),
         6 * math.pi * k * xi * Omega / ((2 + xi**2) * math.sqrt(w)),
     )
-    # both are exact in this limit (spec §4.3, §5); 1e-13 = a few hundred ulp for ~10 flops
+    # both are exact in this limit ([T165], [T28]); 1e-13 = a few hundred ulp for ~10 flops
     assert rel(kernel(model, xi, 0.0, Omega, c), ref) <= 1e-13
 
 
 @pytest.mark.parametrize("model", ["alshaer2005", "ott"])
 def test_film_plus_complement_is_full_sommerfeld(model):
-    """F(ξ̇, Ω) − F(−ξ̇, −Ω) = the 2π Sommerfeld film (spec §4.3, §5)."""
+    """F(ξ̇, Ω) − F(−ξ̇, −Ω) = the 2π Sommerfeld film ([T165], [T28])."""
     worst = 0.0
     for s in random_states(300, seed=7):
         xi, xd = s["xi"], s["xi_dot"]
@@ -367,7 +367,7 @@ def test_full_film_numerical_vs_closed_form_and_complement():
 @pytest.mark.parametrize("xi", [0.0, 0.1, 0.5, 0.9, 0.99, 0.999])
 @pytest.mark.parametrize("xi_dot", [20.0, -20.0])
 def test_pure_squeeze_closed_form(xi, xi_dot):
-    """Ω = 0: F_r = −12kξ̇/(1−ξ²)^{3/2}[π/2 + sgn(ξ̇)(arcsin ξ + ξ√(1−ξ²))], F_t = 0 (spec §5)."""
+    """Ω = 0: F_r = −12kξ̇/(1−ξ²)^{3/2}[π/2 + sgn(ξ̇)(arcsin ξ + ξ√(1−ξ²))], F_t = 0 [T28]."""
     c = 5e-4
     k, w = k_of(MU, R, L, c), 1 - xi**2
     fr = (
@@ -386,8 +386,8 @@ def test_pure_squeeze_closed_form(xi, xi_dot):
 
 @pytest.mark.parametrize("model", ["alshaer2005", "ott"])
 def test_small_eccentricity_isotropic_damping_and_cross_stiffness(model):
-    """ξ → 0: F = −(6πμLR³/c³)ė + (3πμLR³ω/c³)(ẑ × e), ω = ω_J + ω_B (spec §5), evaluated in the
-    Cartesian form of spec §6 (ξ̇ = u·ė/c, ξΩ = ξ(ω_J+ω_B) − 2(t·ė)/c)."""
+    """ξ → 0: F = −(6πμLR³/c³)ė + (3πμLR³ω/c³)(ẑ × e), ω = ω_J + ω_B [T28], evaluated in the
+    Cartesian form of [T24] (ξ̇ = u·ė/c, ξΩ = ξ(ω_J+ω_B) − 2(t·ė)/c)."""
     c, wj, wb = 5e-4, 523.6, -100.0
     D = 6 * math.pi * MU * L * R**3 / c**3
     rng = np.random.default_rng(3)
@@ -407,7 +407,7 @@ def test_small_eccentricity_isotropic_damping_and_cross_stiffness(model):
             assert np.hypot(*(F - ref)) <= (1e-13 if xi == 0 else 1e-5) * np.hypot(*ref)
 
 
-# ---- continuity and sign properties (spec §6) ----------------------------------------------------
+# ---- continuity and sign properties [T24] ------------------------------------------------------
 
 
 @pytest.mark.parametrize("model", ["alshaer2005", "ott"])
@@ -418,8 +418,8 @@ def test_continuous_across_zero_squeeze(model, xi, Omega):
     f0 = kernel(model, xi, 0.0, Omega, c)
     for eps in (1e-9, 1e-20):
         fp, fm = kernel(model, xi, eps, Omega, c), kernel(model, xi, -eps, Omega, c)
-        # a branch bug (paper's rule, spec §3.2/T7) jumps by O(|F|) (F_t sign flip); the smooth
-        # function changes by ≤ 2ε·|∂F/∂ξ̇| ~ 2ε·6πk/(1−ξ²)^{3/2}, i.e. < 1e-9 |F| here (spec §6
+        # a branch bug (paper's rule, T7 of [T21]) jumps by O(|F|) (F_t sign flip); the smooth
+        # function changes by ≤ 2ε·|∂F/∂ξ̇| ~ 2ε·6πk/(1−ξ²)^{3/2}, i.e. < 1e-9 |F| here ([T163]
         # measured ≤ 2e-10 at ε = 1e-9) → 1e-8
         assert rel(fp, f0) <= 1e-8 and rel(fm, f0) <= 1e-8
 
@@ -433,7 +433,7 @@ def test_continuous_across_zero_wedge_speed(model, xi, xi_dot):
     for eps in (2e-7, 1e-20):
         fp, fm = kernel(model, xi, xi_dot, eps, c), kernel(model, xi, xi_dot, -eps, c)
         # F is smooth in Ω at ξ̇ ≠ 0: change ≤ ε·|∂F/∂Ω| ≲ ε·6πk/√(1−ξ²) ≈ 1e-8 of |F| at most
-        # here (spec §6 measured ≤ 2e-10 at ε = 2e-7) → 1e-7; a branch bug (m undefined at Ω = 0)
+        # here ([T163]: measured ≤ 2e-10 at ε = 2e-7) → 1e-7; a branch bug (m undefined at Ω = 0)
         # would give O(|F|) or NaN
         assert rel(fp, f0) <= 1e-7 and rel(fm, f0) <= 1e-7
 
@@ -453,21 +453,21 @@ def test_pure_squeeze_does_no_positive_work(model):
 
 
 def test_near_wall_separating_finite_limit():
-    """ξ̇ < 0, ξ → 1: F_r → 4kρ(2ξ̇² − B²)/ξ̇², F_t → 12kBρ/|ξ̇| (spec §6)."""
+    """ξ̇ < 0, ξ → 1: F_r → 4kρ(2ξ̇² − B²)/ξ̇², F_t → 12kBρ/|ξ̇| [T24]."""
     c, xd, Om = 5e-4, -50.0, 300.0
     k = k_of(MU, R, L, c)
     xi = 1 - 1e-8
     B = xi * Om / (2 + xi**2)
     rho = math.hypot(xd, B)
     ref = (4 * k * rho * (2 * xd**2 - B**2) / xd**2, 12 * k * B * rho / abs(xd))
-    # spec §6: convergence is O(1−ξ), rel. diff 9e-8 at 1−ξ = 1e-8 for this state → 1e-6 (a
+    # [T24]: convergence is O(1−ξ), rel. diff 9e-8 at 1−ξ = 1e-8 for this state → 1e-6 (a
     # first-order coefficient ≤ 100); without the A < 0 guard the O(1/(1−ξ²)) terms cancel and
     # lose ~8 digits
     assert rel(kernel("alshaer2005", xi, xd, Om, c), ref) <= 1e-6
 
 
 def test_near_wall_against_50_digit_evaluation():
-    """The guarded double-precision kernel vs the same compact formula (spec §3.3) in 50-digit
+    """The guarded double-precision kernel vs the same compact formula [T21] in 50-digit
     arithmetic, for 1 − ξ from 1e-1 down to 1e-12."""
     mp = pytest.importorskip("mpmath")
     mp.mp.dps = 50
@@ -489,7 +489,7 @@ def test_near_wall_against_50_digit_evaluation():
                 )
                 got = kernel("alshaer2005", xi, xd, Om, c)
                 assert all(map(math.isfinite, got))
-                # spec §3.3 reports 3e-14 |F| for the guarded form; 1e-12 allows for the ≤ 30 flops
+                # [T163] reports 3e-14 |F| for the guarded form; 1e-12 allows for the ≤ 30 flops
                 # and the atan(y)/y series truncation (< 1e-19)
                 assert rel(got, ref) <= 1e-12, (n, xd, Om)
 

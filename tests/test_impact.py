@@ -12,7 +12,7 @@ from jointdyn.model import Model
 from jointdyn.simulate import SimConfig, simulate
 
 RB, RJ = 0.0105, 0.0100
-K = 6.9e10  # spec/benchmark.md journal-in-bearing stiffness [N/m^1.5]
+K = 6.9e10  # benchmark journal-in-bearing stiffness [T160, T56] [N/m^1.5]
 
 
 def impact(law, v0=1.0, mass=0.14, solver="dopri5", rtol=1e-9):
@@ -97,7 +97,7 @@ def test_hertz_conserves_energy():
 
 
 def test_dry_slider_crank_compiled_and_scipy_event_paths_agree():
-    """First revolution (before chaos sets in, spec/benchmark.md): the compiled onset handling
+    """First revolution (before chaos sets in, [T162]): the compiled onset handling
     and scipy's event location give the same impacts, the same first-impact depth and RMS."""
     from jointdyn import post
     from jointdyn.models.slider_crank import slider_crank

@@ -109,7 +109,7 @@ def test_rotating_the_whole_system_rotates_the_forces(name):
 @pytest.mark.parametrize("film", ["alshaer2005", "ott"])
 def test_element_matches_film_front_with_rotating_bearing(film):
     """The element's kinematics (ξ̇, γ̇ by finite differences of e(t), Ω = ω_J + ω_B − 2γ̇)
-    fed to the film-model front give the same force as the element (spec §7)."""
+    fed to the film-model front give the same force as the element [T14, T15]."""
     sysm = two_body_model(ELEMENTS[film]).compile()
     rng = np.random.default_rng(3)
     for _ in range(30):

@@ -66,7 +66,7 @@ def power_balance_moment(t):
 
 
 def test_analytic_reference_self_consistent():
-    # the reference itself reproduces the spec's numbers (peak +138.62, min -138.42)
+    # the reference itself reproduces the benchmark's numbers [T160] (peak +138.62, min -138.42)
     t = np.linspace(0.0, 2 * math.pi / OMEGA, 200001)
     T = power_balance_moment(t)
     assert abs(T.max() - 138.62) < 0.02 and abs(T.min() + 138.42) < 0.02

@@ -66,8 +66,20 @@ def journal_orbit(ex_over_c, ey_over_c, ax=None, label=None, frame: str | None =
         ax._jd_circle = True  # type: ignore[attr-defined]
     (line,) = ax.plot(ex_over_c, ey_over_c, label=label, lw=kw.pop("lw", 0.8), **kw)
     if start and len(ex_over_c):
-        ax.plot(ex_over_c[0], ey_over_c[0], "o", mfc="none", mec=line.get_color(), ms=7)
-        ax.plot(ex_over_c[-1], ey_over_c[-1], "x", color=line.get_color(), ms=7)
+        first = not getattr(ax, "_jd_marks", False)
+        ax._jd_marks = True  # type: ignore[attr-defined]
+        ax.plot(
+            ex_over_c[0],
+            ey_over_c[0],
+            "o",
+            mfc="none",
+            mec=line.get_color(),
+            ms=7,
+            label="start" if first else None,
+        )
+        ax.plot(
+            ex_over_c[-1], ey_over_c[-1], "x", color=line.get_color(), ms=7, label="end" if first else None
+        )
     ax.set_aspect("equal")
     lim = max(1.1, 1.05 * float(np.nanmax(np.hypot(ex_over_c, ey_over_c))) if len(ex_over_c) else 1.1)
     ax.set_xlim(-lim, lim)
@@ -275,7 +287,7 @@ def run_figure(
         window = ("\nlast revolution" if revs == 1 else f"\nlast {revs:g} revolutions") if revs else ""
         ax.set_title(describe(runs[0]) + window, fontsize=9)
     if what == "orbit":
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2, frameon=False)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=4, frameon=False)
     else:
         ax.legend(fontsize=8, loc="best")
     return ax
@@ -335,9 +347,22 @@ DISPLAY = {
 UNITS = {k: v[0] for k, v in DISPLAY.items()}  # kept for callers of the old name
 
 
+#: readable names of sweep parameters and metrics
+NAMES = {
+    "peak_moment": "peak crank moment",
+    "min_moment": "minimum crank moment",
+    "rms_moment": "RMS crank moment",
+    "max_xi": "max eccentricity ratio ξ",
+    "min_h_min": "minimum film thickness",
+    "impacts": "impacts",
+    "energy_dissipated": "energy dissipated",
+    "wall_time_s": "wall time",
+}
+
+
 def _disp(name, values):
     unit, f = DISPLAY.get(str(name), ("", 1.0))
-    label = str(name).replace("_", " ") + (f" [{unit}]" if unit else "")
+    label = NAMES.get(str(name), str(name).replace("_", " ")) + (f" [{unit}]" if unit else "")
     return np.asarray(values, float) * f, label
 
 

@@ -1,6 +1,6 @@
 """Reproduce Alshaer et al. (2005): the slider-crank with perfect, dry, Ott and π-film joints.
 
-``jointdyn reproduce alshaer2005 --out DIR`` runs the paper's four cases (spec/benchmark.md)
+``jointdyn reproduce alshaer2005 --out DIR`` runs the paper's four cases (benchmark [T160])
 plus a beyond-the-paper section (c = 0.05 mm, a viscosity series) and writes
 ``summary.csv``, ``<case>.csv``, the figures and a self-contained ``report.html``.
 """
@@ -100,6 +100,13 @@ def _png(fig) -> bytes:
 PAPER = ("perfect", "dry", "ott", "alshaer2005")
 #: one colour per case, the same in every figure
 COLORS = {"perfect": "k", "dry": "tab:red", "ott": "tab:orange", "alshaer2005": "tab:blue"}
+_MORE = ("tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray")
+
+
+def _colors(names) -> dict[str, str]:
+    """Paper cases keep their colour; the others get distinct ones in order."""
+    extra = iter(_MORE * 3)
+    return {n: COLORS[n] if n in COLORS else next(extra) for n in names}
 
 
 def _last(res, revs: float):
@@ -120,6 +127,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     import matplotlib.pyplot as plt
 
     figs = {}
+    col = _colors(runs)
     names = [n for n in PAPER if n in runs]
     last = {n: _last(runs[n][0], revs) for n in runs}
     one = "last revolution" if revs >= 1 else f"{revs:g} revolution"
@@ -127,7 +135,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         fig, ax = plt.subplots(figsize=(8, 3.8))
         res = runs[n][0]
         plots.moment_vs_angle(
-            res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=COLORS[n]
+            res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=col[n]
         )
         ax.set_title(f"crank driving moment, {revs:g} revolutions — {runs[n][3].label}", fontsize=10)
         fig.tight_layout()
@@ -142,7 +150,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         axs[0, 0].plot(
             _deg(r),
             post.driving_moment(r),
-            color=COLORS[n],
+            color=col[n],
             lw=1.2 if n != "perfect" else 1.8,
             ls="--" if n == "perfect" else "-",
             label=runs[n][3].label,
@@ -156,7 +164,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
                 axs[1, 0].plot(
                     _deg(r),
                     post.driving_moment(r),
-                    color=COLORS[n],
+                    color=col[n],
                     lw=1.0,
                     ls="--" if n == "perfect" else "-",
                     label=runs[n][3].label,
@@ -182,8 +190,9 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
                 post.driving_moment(r),
                 lw=1.0,
                 label=runs[n][3].label,
-                color="k" if n == "perfect" else None,
+                color=col[n],
                 ls="--" if n == "perfect" else "-",
+                zorder=3 if n == "perfect" else 2,
             )
         ax.set_title(f"beyond the paper: clearance, viscosity, finite length ({one})", fontsize=10)
         ax.set_xlabel(f"crank angle [deg], {one}")
@@ -198,11 +207,9 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     for n in [n for n in runs if "piston_pin" in runs[n][0].journals()]:
         fig, ax = plt.subplots(figsize=(4.8, 5.2))
         ex, ey = last[n].orbit("piston_pin", frame="bushing")
-        plots.journal_orbit(
-            ex, ey, ax=ax, frame="rod", color=COLORS.get(n, "tab:blue"), label="journal centre"
-        )
+        plots.journal_orbit(ex, ey, ax=ax, frame="rod", color=col[n], label="journal centre")
         ax.set_title(f"journal centre path, {one}\n{runs[n][3].label}", fontsize=9)
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=2, frameon=False)
+        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4, frameon=False)
         fig.tight_layout()
         figs[f"orbit_{n}.png"] = _png(fig)
         plt.close(fig)
@@ -217,7 +224,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
                 "minimum film thickness $h_{min}$ [µm]",
                 ax=ax,
                 label=runs[n][3].label,
-                color=COLORS.get(n),
+                color=col[n],
             )
         ax.set_yscale("log")
         from matplotlib.ticker import FuncFormatter
@@ -225,7 +232,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
         ax.set_xlabel(f"crank angle [deg], {one}")
         ax.set_title(f"minimum film thickness, {one}", fontsize=10)
-        ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5), frameon=False)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
         fig.tight_layout()
         figs["film_thickness.png"] = _png(fig)
         plt.close(fig)
@@ -235,7 +242,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         for ax, n in zip(axs[:, 0], imp):
             r = last[n]
             f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
-            ax.plot(_deg(r), f, color=COLORS[n], lw=0.9)
+            ax.plot(_deg(r), f, color=col[n], lw=0.9)
             if "perfect" in runs:
                 p = last["perfect"]
                 ax.plot(
@@ -326,7 +333,7 @@ def discussion(runs: dict) -> list[str]:
             f"Dry clearance joint: {s['dry']['impacts']} impacts in the run; peak moment "
             f"{s['dry']['peak_moment_all']:.0f} N·m = {r:.1f}× the perfect peak. The paper says "
             f'"two orders of magnitude"; peaks of impacts do not converge with tolerance '
-            f"(the dry case is chaotic, spec/benchmark.md), so compare RMS "
+            f"(the dry case is chaotic, [T162]), so compare RMS "
             f"({s['dry']['rms_moment']:.1f} vs {s['perfect']['rms_moment']:.1f} N·m)."
         )
     for n in ("ott", "alshaer2005"):
@@ -341,13 +348,13 @@ def discussion(runs: dict) -> list[str]:
         d = np.hypot(a["ex_over_c"] - b["ex_over_c"], a["ey_over_c"] - b["ey_over_c"]).max()
         out.append(
             f"Journal paths of Ott and the π-film differ by up to {d:.3f}·c: Ott's model is a "
-            f"rational approximation of the same π-film (spec §4.3), 5–25 % off at moderate ξ and "
+            f"rational approximation of the same π-film [T165], 5–25 % off at moderate ξ and "
             f"far off for separating motion near the wall, which is where the path differs."
         )
     out.append(
         "Both lubricated models here use the corrected film speed Ω = ω_J + ω_B − 2γ̇ (the "
-        "paper prints ω − γ̇, typo T1 in spec §3.4) and the corrected eqs 6–9/1–5; with the "
-        "bushing in the rod eye, ω_B = φ̇_rod enters Ω (spec §11.4), which the paper may not "
+        "paper prints ω − γ̇, typo T1 of [T163]) and the corrected eqs 6–9/1–5; with the "
+        "bushing in the rod eye, ω_B = φ̇_rod enters Ω [T161], which the paper may not "
         "have done — its published curves need not match a correct implementation exactly."
     )
     return out
@@ -380,7 +387,7 @@ td,th{{border:1px solid #bbb;padding:2px 6px}} figure{{display:inline-block;marg
 <h1>Slider-crank with a lubricated piston pin — reproduction of Alshaer et al., J. Mech. Des. 127 (2005)</h1>
 <p>{revs:g} crank revolutions at 5000 rpm; moments over the last revolution (columns *_all: whole run).
 Film models: Ott (corrected, docs/theory.md T20–T39) and the paper's π-film in the branch-free form
-of spec §3.3; dry contact Lankarani–Nikravesh (T50–T69).</p>
+of T21/T163; dry contact Lankarani–Nikravesh (T50–T56).</p>
 <h2>Summary</h2><table><tr>{head}</tr>{rows}</table>
 <h2>Paper figures</h2>
 {"".join(img(f"moment_{n}.png") for n in paper)}

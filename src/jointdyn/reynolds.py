@@ -1,7 +1,7 @@
 """Numerical long-bearing Reynolds solver: the independent reference for the film models.
 
 Solves the infinitely-long-bearing Reynolds equation in the **bearing-fixed (global) frame**
-[T30] (spec §2.1)
+[T30] (derived in [T20])
 
     ∂/∂α( h³ ∂p/∂α ) = 6μR² [ (ω_J + ω_B) ∂h/∂α + 2 ∂h/∂t|_α ],   h(α, t) = c − e·(cos α, sin α),
 
@@ -18,11 +18,11 @@ Method (no closed-form film result is used):
    p = p_S − p_S(α₁) there, p = 0 on the other half.
 4. Forces on the journal [T33]: F = −RL∫p (cos α, sin α) dα; p vanishes at the film ends (or is
    periodic), so F_x = RL∫p′ sin α dα, F_y = −RL∫p′ cos α dα; then F_r = F·u, F_t = F·t with
-   u = (cos γ, sin γ), t = ẑ × u (spec §1).
+   u = (cos γ, sin γ), t = ẑ × u (conventions of docs/theory.md).
 
 Quadrature: scipy.integrate.quad with epsrel = 1e-13, split at the minimum film α = γ (mod 2π)
 where 1/h³ peaks near the wall. Accuracy: ≤ 5e-11 of |F| over 1,000 random states with
-ξ ≤ 0.999 (median 6e-15), ≤ 4e-9 against the 9-digit tables of spec §8.2b (their rounding), both
+ξ ≤ 0.999 (median 6e-15), ≤ 4e-9 against the 9-digit tables of [T164] (their rounding), both
 measured by ``python tests/test_film_models.py``. Speed: ~6 ms per π-film state.
 """
 
@@ -141,7 +141,7 @@ def pi_film_force(xi, xi_dot, gamma_dot, omega_journal, omega_bearing, mu, R, L,
 
 
 def pi_film_theta1(xi, xi_dot, gamma_dot, omega_journal, omega_bearing, gamma=0.0):
-    """Film start θ₁ = α₁ − γ − π [rad], wrapped to (−π, π] (angle from the maximum film, spec §1)."""
+    """Film start θ₁ = α₁ − γ − π [rad], wrapped to (−π, π] (angle from the maximum film, [T20])."""
     f = _Film(xi, xi_dot, gamma_dot, omega_journal, omega_bearing, gamma)
     th = math.remainder(f.pi_film_start() - gamma - math.pi, TWO_PI)
     return math.pi if th == -math.pi else th

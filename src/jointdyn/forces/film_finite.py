@@ -4,7 +4,7 @@ tabulated for use inside a simulation [T36–T38].
 Nondimensional form (θ from the maximum film, ζ = z/R ∈ [−λ, λ], λ = L/D, H = 1 + ξ cos θ):
 ∂/∂θ(H³ ∂P/∂θ) + ∂/∂ζ(H³ ∂P/∂ζ) = S(θ), P = 0 at ζ = ±λ, periodic in θ. The pressure is
 p = (6μR²/c²)(A·P_A + B·P_B) with A = ξ̇, B = ξΩ/(2+ξ²), S_A = 2 cos θ, S_B = −(2+ξ²) sin θ
-(spec §2.1 with the axial term). Gümbel (half-Sommerfeld) cavitation clips p < 0, so the force is
+([T20] with the axial term). Gümbel (half-Sommerfeld) cavitation clips p < 0, so the force is
 positively homogeneous of degree 1 in (A, B): **F = (6μR⁴/c²)·ρ·f(ξ, ψ)**, ρ = √(A²+B²),
 ψ = atan2(A, B), f = ∫∫ max(sin ψ P_A + cos ψ P_B, 0)(cos θ, sin θ) dθ dζ [T36]. The table holds
 f·(1−ξ²)^{3/2} on a grid uniform in u = −ln(1−ξ) and ψ, interpolated bicubically [T37].

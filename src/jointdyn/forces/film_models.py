@@ -9,8 +9,8 @@ packed in order into the block ``p``; empty for the models below). A tabulated m
 
 * xi        eccentricity ratio ξ = |e|/c, 0 ≤ ξ < 1 [-]
 * xi_dot    ξ̇ = dξ/dt [1/s]
-* xi_Omega  the product ξΩ, Ω = ω_J + ω_B − 2γ̇ (global rates, spec §2.1); the product keeps
-            ξ = 0 regular (spec §6, Cartesian form B = ξΩ/(2+ξ²)) [rad/s]
+* xi_Omega  the product ξΩ, Ω = ω_J + ω_B − 2γ̇ (global rates, [T20]); the product keeps
+            ξ = 0 regular ([T24], Cartesian form B = ξΩ/(2+ξ²)) [rad/s]
 * mu        dynamic viscosity μ [Pa·s]
 * R         journal radius [m]
 * L         bearing length [m]
@@ -19,7 +19,7 @@ packed in order into the block ``p``; empty for the models below). A tabulated m
 * table     float64 2-D array (rows, 2) used only by tabulated models (``finite``) [-]
 
 F_r is the film force on the journal along u = e/|e| (bearing centre → journal centre), F_t along
-t = ẑ × u [N] (spec §1). Theory: docs/theory.md [T20–T39].
+t = ẑ × u [N] (conventions of docs/theory.md). Theory: docs/theory.md [T20–T39].
 """
 
 from __future__ import annotations
@@ -55,7 +55,7 @@ def _atan_y_over_y_minus_1(y):
 
 @njit(cache=True)
 def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
-    """The paper's π-film long bearing (alshaer2005), branch-free compact form [T21] (spec §3.3).
+    """The paper's π-film long bearing (alshaer2005), branch-free compact form [T21] ([T163]).
 
     k = μLR³/c², A = ξ̇, B = ξΩ/(2+ξ²), ρ = √(A²+B²), w = 1−ξ² = (1−ξ)(1+ξ),
     Δδ = δ₂ − δ₁ = 2·atan2(ρ√w, −ξA) ∈ (0, 2π), film start θ₁ = atan2(A, B)  [T22]
@@ -86,7 +86,7 @@ def pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
 @njit(cache=True)
 def ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Ott's long-bearing model (paper eqs 1–5) with (1−ξ²) denominators, ω-free form [T25]
-    (spec §4.1):
+    ([T163]):
 
     k = μLR³/c², w = 1−ξ², G = √(w(Ω² + 4ξ̇²/ξ²)), so ξ²G = ξ√(w((ξΩ)² + 4ξ̇²))   [T25]
     κ = G/(2|ξ̇|), Φ = (κ+3)/(κ+3/2) for ξ̇ > 0, κ/(κ+3/2) for ξ̇ < 0, 1 at ξ̇ = 0; written
@@ -171,7 +171,7 @@ def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
 
 @dataclass(frozen=True)
 class Ott:
-    """Ott's long-bearing solution (paper eqs 1–5, (2−ξ²) typo corrected to (1−ξ²); spec §4).
+    """Ott's long-bearing solution (paper eqs 1–5, (2−ξ²) typo corrected to (1−ξ²); [T163]).
     An approximation of the π-film (exact for steady load and ξ → 0; off by 5–25 % at moderate ξ
     and diverging for ξ̇ < 0 near the wall) [T25]."""
 
@@ -183,7 +183,7 @@ class Ott:
 
 @dataclass(frozen=True)
 class Alshaer2005:
-    """The paper's π-film long-bearing solution (eqs 6–9 with typos T1–T7 corrected; spec §3.3):
+    """The paper's π-film long-bearing solution (eqs 6–9 with typos T1–T7 corrected; [T163]):
     exact for the long-bearing Reynolds equation on a half film starting at θ₁ [T21]."""
 
     code: ClassVar[int] = ALSHAER2005

@@ -5,12 +5,12 @@ radius R_B) is on body i, the journal (centre P_j, radius R_J) on body j, c = R_
 One compiled kernel serves both: a film force (lubricated bearing) and/or a contact force
 (dry joint; mixed film/contact regime of a bearing), each optional.
 
-Kinematics [T14] (spec §7, eqs 12–19 corrected): **e** = P_j − P_i, ξ = |e|/c, u = e/|e|,
+Kinematics [T14] (the paper's eqs 12–19 corrected): **e** = P_j − P_i, ξ = |e|/c, u = e/|e|,
 t = ẑ × u, ξ̇ = (u·ė)/c, ξγ̇_e = (t·ė)/c, Ω = ω_J + ω_B − 2γ̇_e; the film kernels take the
-product ξΩ = ξ(ω_J + ω_B) − 2(t·ė)/c, regular at ξ = 0 (spec §6).
+product ξΩ = ξ(ω_J + ω_B) − 2(t·ė)/c, regular at ξ = 0 [T24].
 
 Film force on the journal [T15]: **F** = F_r u + F_t t at the journal centre, −**F** on the
-bearing through the same point (spec §7 eqs 20–22 corrected) [T8].
+bearing through the same point (the paper's eqs 20–22 corrected) [T8, T15].
 
 Contact [T16]: penetration δ = |e| − c_c with c_c = c (dry joint) or c − h_a (bearing with
 asperity height h_a); normal force F_n from the contact law, friction −μ(v_t)F_n t with the
@@ -305,7 +305,7 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
         ux = ex / e
         uy = ey / e
     else:
-        sp = math.sqrt(edx * edx + edy * edy)  # any unit vector works at e = 0 (spec §6)
+        sp = math.sqrt(edx * edx + edy * edy)  # any unit vector works at e = 0 [T24]
         ux = edx / sp if sp > 0.0 else 1.0
         uy = edy / sp if sp > 0.0 else 0.0
     tx = -uy

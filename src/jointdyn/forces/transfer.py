@@ -3,7 +3,7 @@
 A force **F** applied to body j at a point with arm a_j from its centre of mass, and −**F** to
 body i at the same world point (arm a_i from body i's centre), gives
 Q_j += [F_x, F_y, a_j × F], Q_i += [−F_x, −F_y, −(a_i × F)] [T8]. Both forces act on the same
-line, so the pair has no net moment (Newton's third law, spec §7 eqs 20–22 corrected).
+line, so the pair has no net moment (Newton's third law, the paper's eqs 20–22 corrected, [T15]).
 """
 
 from __future__ import annotations

@@ -1,10 +1,10 @@
-"""The paper's slider-crank (spec/benchmark.md): crank, connecting rod, slider; 5000 rpm.
+"""The paper's slider-crank (benchmark definition [T160]): crank, connecting rod, slider; 5000 rpm.
 
 Bodies: ``crank`` (pinned to the ground at the origin, driven at constant speed),
 ``rod``, ``slider`` (translational joint along the global x axis through the crank pivot).
 The joint under study is between rod and slider (the piston pin). For imperfect joints the
 **bearing (bushing) is in the rod eye (body i = rod)** and the **journal is the pin on the
-slider (body j = slider)**, so Ω = φ̇_slider + φ̇_rod − 2γ̇ = φ̇_rod − 2γ̇ (spec §7).
+slider (body j = slider)**, so Ω = φ̇_slider + φ̇_rod − 2γ̇ = φ̇_rod − 2γ̇ [T161].
 """
 
 from __future__ import annotations
@@ -15,7 +15,7 @@ from ..joints.constraints import AngleDriver, Revolute, Translational
 from ..model import Model
 from ..units import rpm
 
-#: benchmark parameters (spec/benchmark.md), SI
+#: benchmark parameters [T160], SI
 CRANK_LENGTH = 0.05  # [m]
 ROD_LENGTH = 0.12  # [m]
 CRANK_MASS, CRANK_INERTIA = 0.30, 1.0e-4  # [kg], [kg·m²]
