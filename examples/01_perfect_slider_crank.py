@@ -21,14 +21,17 @@ r, l, omega = 0.05, 0.12, rpm(5000)  # crank and rod length [m], crank speed [ra
 
 m = Model("slider-crank", gravity=(0.0, -9.81))
 m.add_ground_point("O", (0.0, 0.0))
-# mass [kg], inertia [kg·m²]; frames at the centre of mass, points in the body frame [m];
+# mass [kg], inertia [kg·m²]; frames at the centre of mass; points in the body
+# frame [m];
 # positions and velocities are guesses that compile() makes consistent
 crank_points = {"O": (-r / 2, 0.0), "A": (r / 2, 0.0)}
-crank_velocity = (0.0, omega * r / 2, omega)  # consistent with the driver [m/s, m/s, rad/s]
-m.add_body("crank", 0.30, 1.0e-4, position=(r / 2, 0.0), velocity=crank_velocity, points=crank_points)
+crank_velocity = (0.0, omega * r / 2, omega)  # as the driver: [m/s, m/s, rad/s]
+m.add_body(
+    "crank", 0.30, 1.0e-4, (r / 2, 0.0), velocity=crank_velocity, points=crank_points
+)
 rod_points = {"A": (-l / 2, 0.0), "B": (l / 2, 0.0)}
-m.add_body("rod", mass=0.21, inertia=2.5e-4, position=(r + l / 2, 0.0), points=rod_points)
-m.add_body("slider", mass=0.14, inertia=1.0e-4, position=(r + l, 0.0), points={"B": (0.0, 0.0)})
+m.add_body("rod", 0.21, 2.5e-4, position=(r + l / 2, 0.0), points=rod_points)
+m.add_body("slider", 0.14, 1.0e-4, position=(r + l, 0.0), points={"B": (0.0, 0.0)})
 m.add("crank_pivot", Revolute("ground", "O", "crank", "O"))
 m.add("drive", AngleDriver("ground", "crank", phi0=0.0, omega=omega))
 m.add("crank_pin", Revolute("crank", "A", "rod", "A"))
@@ -47,7 +50,8 @@ print(f"max piston-pin force on the rod: {((pin**2).sum(axis=1) ** 0.5).max():.1
 print(f"max constraint drift: {res.drift[:, 0].max():.1e} m")
 
 shipped = simulate(slider_crank("perfect").compile(), cfg)
-print(f"same as the shipped builder: max |ΔM| = {abs(post.driving_moment(shipped) - moment).max():.1e} N·m")
+dM = abs(post.driving_moment(shipped) - moment).max()
+print(f"same as the shipped builder: max |ΔM| = {dM:.1e} N·m")
 
 fig, ax = plt.subplots(figsize=(7, 4))
 plots.moment_vs_angle(post.body_angle(res, "crank"), moment, ax=ax)

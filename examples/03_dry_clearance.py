@@ -28,7 +28,11 @@ model.add("piston_pin", ClearanceJoint("rod", "B", "slider", "B", R_B, R_J, cont
 
 revs = 2
 cfg = SimConfig(
-    t_end=revs * 2 * math.pi / SPEED, n_out=revs * 720 + 1, solver="dopri5", rtol=1e-7, atol=1e-11
+    t_end=revs * 2 * math.pi / SPEED,
+    n_out=revs * 720 + 1,
+    solver="dopri5",
+    rtol=1e-7,
+    atol=1e-11,
 )
 dry = simulate(model.compile(), cfg)
 perfect = simulate(slider_crank("perfect").compile(), cfg)
@@ -40,7 +44,10 @@ print(
 )
 for name, res in (("perfect", perfect), ("dry", dry)):
     s = post.stats(post.driving_moment(res))
-    print(f"{name:8s} crank moment peak {s['peak']:8.1f}  min {s['min']:8.1f}  rms {s['rms']:6.1f} N·m")
+    print(
+        f"{name:8s} crank moment peak {s['peak']:8.1f}  min {s['min']:8.1f}"
+        f"  rms {s['rms']:6.1f} N·m"
+    )
 
 deg = lambda res: 180 / math.pi * post.body_angle(res, "crank")  # noqa: E731
 fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(8, 6), sharex=True)
