@@ -72,8 +72,8 @@ def journal_orbit(ex_over_c, ey_over_c, ax=None, label=None, frame: str | None =
             ex_over_c[0],
             ey_over_c[0],
             "o",
+            color=line.get_color(),
             mfc="none",
-            mec=line.get_color(),
             ms=7,
             label="start" if first else None,
         )
