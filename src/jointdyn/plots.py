@@ -228,30 +228,34 @@ def run_figure(
                 journal_orbit(ex, ey, ax=ax, label=_label(res, e, many, lab), frame=frame)
             continue
         elif what == "film":
+            positive = True
             for e in _journal(res, element):
                 h = res.element(e, "h_min") * 1e6
+                positive &= bool(np.all(h > 0))
                 (ln,) = ax.plot(xs, h, lw=1.0, label=_label(res, f"{e}: h_min", many, lab))
                 i = int(np.argmin(h))
                 ax.plot(xs[i], h[i], "v", color=ln.get_color())
-                unit = "°" if is_angle else " ms"
+                where = f"{xs[i]:.0f}°" if is_angle else f"{xs[i]:.3g} ms"
                 ax.annotate(
-                    f"min {h[i]:.3g} µm at {xs[i]:.0f}{unit}"
-                    if is_angle
-                    else f"min {h[i]:.3g} µm at {xs[i]:.3g} ms",
+                    f"min {h[i]:.3g} µm at {where}",
                     (xs[i], h[i]),
                     textcoords="offset points",
                     xytext=(6, 8),
                     fontsize=8,
                     color=ln.get_color(),
                 )
-            from matplotlib.ticker import FuncFormatter
+            if positive:  # a film: log axis; a dry gap goes negative (penetration): linear
+                from matplotlib.ticker import FuncFormatter
 
-            ax.set_yscale("log")
-            ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-            ax.yaxis.set_minor_formatter(
-                FuncFormatter(lambda v, _: f"{v:g}" if str(f"{v:g}")[0] in "25" else "")
-            )
-            ax.set_ylabel("minimum film thickness / gap $h_{min}$ [µm]")
+                ax.set_yscale("log")
+                ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+                ax.yaxis.set_minor_formatter(
+                    FuncFormatter(lambda v, _: f"{v:g}" if f"{v:g}"[0] in "25" else "")
+                )
+                ax.set_ylabel("minimum film thickness $h_{min}$ [µm]")
+            else:
+                ax.axhline(0.0, color="k", lw=0.6)
+                ax.set_ylabel("gap $h_{min}$ [µm] (< 0: penetration)")
         elif what == "contact":
             els = _journal(res, element)
             with_law = [

@@ -10,6 +10,7 @@ from __future__ import annotations
 import base64
 import csv
 import html
+import importlib.util
 import io
 import math
 import time
@@ -380,6 +381,11 @@ def report_html(runs: dict, figs: dict, revs: float, params: dict) -> str:
     paper = [n for n in ("perfect", "dry", "ott", "alshaer2005") if n in runs]
     beyond = [n for n in runs if n not in paper]
     title = "jointdyn — Alshaer et al. (2005) reproduction"
+    interactive = (
+        '<p>Zoomable curves (e.g. into the dry spikes): <a href="interactive.html">interactive.html</a>.</p>'
+        if importlib.util.find_spec("plotly")
+        else ""
+    )
     body = f"""<!DOCTYPE html><html><head><meta charset="utf-8"><title>{title}</title>
 <style>body{{font-family:sans-serif;max-width:1100px;margin:auto}}
 table{{border-collapse:collapse;font-size:12px}}
@@ -388,7 +394,7 @@ td,th{{border:1px solid #bbb;padding:2px 6px}} figure{{display:inline-block;marg
 <p>{revs:g} crank revolutions at 5000 rpm; moments over the last revolution (columns *_all: whole run).
 Film models: Ott (corrected, docs/theory.md T20–T39) and the paper's π-film in the branch-free form
 of T21/T163; dry contact Lankarani–Nikravesh (T50–T56).</p>
-<h2>Summary</h2><table><tr>{head}</tr>{rows}</table>
+{interactive}<h2>Summary</h2><table><tr>{head}</tr>{rows}</table>
 <h2>Paper figures</h2>
 {"".join(img(f"moment_{n}.png") for n in paper)}
 {img("moment_overlay.png", 800)}
@@ -438,5 +444,11 @@ def reproduce_alshaer2005(
         "initial state": "ideal mechanism at crank angle 0, journal centred (e = 0, ė = 0)",
     }
     (out / "report.html").write_text(report_html(runs, figs, revs, params), encoding="utf-8")
+    try:  # the [interactive] extra: zoomable moment curves and orbits in interactive.html
+        from .iplots import reproduction_html
+
+        reproduction_html(runs, out / "interactive.html", revs)
+    except ImportError:
+        pass
     (out / "summary.md").write_text(summary_markdown(runs) + "\n")
     return runs

@@ -18,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from .forces.journal import OUTPUTS as _JOURNAL_OUTPUTS
+from .saved import load_dataset, system_from_dict
 from .system import System
 
 # labels of the saved "output" dimension: the journal elements' outputs (other elements' columns
@@ -428,46 +429,6 @@ def _lambda_units(c) -> list[str]:
     if isinstance(c, Translational):
         return ["N", "N·m"]  # normal force, then the moment that keeps the angle
     return ["N"] * type(c).rows
-
-
-def system_from_dict(d: dict) -> System:
-    """Rebuild the compiled :class:`~jointdyn.system.System` from ``Model.to_dict()`` (the
-    ``model`` attribute of a results file)."""
-    from .forces.contact_laws import CONTACT_LAWS
-    from .forces.elements import FORCE_ELEMENTS
-    from .forces.friction_laws import FRICTION_LAWS
-    from .joints.constraints import CONSTRAINTS
-    from .model import Model
-
-    def value(v):
-        if isinstance(v, dict) and "law" in v:
-            args = {k: value(x) for k, x in v.items() if k != "law"}
-            return {**CONTACT_LAWS, **FRICTION_LAWS}[v["law"]](**args)
-        return tuple(value(x) for x in v) if isinstance(v, list) else v
-
-    m = Model(d["name"], tuple(d["gravity"]))
-    for p, xy in d.get("ground_points", {}).items():
-        m.add_ground_point(p, xy)
-    for n, b in d["bodies"].items():
-        m.add_body(n, **{k: (value(x) if k != "points" else x) for k, x in b.items()})
-    for n, item in d["items"].items():
-        args = {k: value(x) for k, x in item.items() if k != "type"}
-        m.add(n, {**CONSTRAINTS, **FORCE_ELEMENTS}[item["type"]](**args))
-    return m.compile()
-
-
-def load_dataset(path):
-    """Read any jointdyn netCDF file (``results.nc``, ``sweep.nc``) as an xarray Dataset,
-    verifying the stored checksums; corruption raises a one-line ``ValueError``."""
-    import xarray as xr
-
-    try:
-        return xr.load_dataset(path, engine="h5netcdf")
-    except FileNotFoundError:
-        raise
-    except (OSError, ValueError, KeyError) as err:  # h5py: "filter returned failure" = bad checksum
-        msg = str(err).splitlines()[0] if str(err) else type(err).__name__
-        raise ValueError(f"{path}: unreadable or corrupt netCDF file ({msg})") from None
 
 
 def load(path):
