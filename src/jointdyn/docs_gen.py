@@ -4,8 +4,8 @@
 paper's cases and the beyond-the-paper cases) and the clearance × viscosity sweep of
 ``examples/sweep_clearance_viscosity.toml``, then rewrites
 
-* the README blocks between ``<!-- generated:NAME -->`` and ``<!-- /generated -->``
-  (``reproduce-table``, ``reproduce-claims``, ``sweep-claims``), and
+* the blocks between ``<!-- generated:NAME -->`` and ``<!-- /generated -->`` of the README and
+  of ``docs/reproduction.md`` (``reproduce-table``, ``reproduce-claims``, ``sweep-claims``), and
 * the figures in ``docs/figures/`` (``moment_overlay.png``, ``orbit_*.png``,
   ``film_thickness.png``, ``joint_force.png``, ``moment_beyond.png``, ``sweep_*.png``).
 
@@ -26,6 +26,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
+#: documents with generated blocks: the README must have every block, docs pages may use some
+PAGES = (ROOT / "docs" / "reproduction.md",)
 FIGURES = ROOT / "docs" / "figures"
 SWEEP_SPEC = ROOT / "examples" / "sweep_clearance_viscosity.toml"
 REVS = 4.0
@@ -176,8 +178,19 @@ def compare(old: str, new: str, name: str) -> list[str]:
     return out
 
 
-def generate(readme: Path = README, figures: Path = FIGURES, workers: int | None = None) -> dict[str, str]:
-    """Recompute everything, write the figures and the README blocks; returns the blocks."""
+def _blocks_now(runs, ds) -> dict[str, str]:
+    return {
+        "reproduce-table": reproduce_table(runs),
+        "reproduce-claims": reproduce_claims(runs),
+        "sweep-claims": sweep_claims(ds),
+    }
+
+
+def generate(
+    readme: Path = README, figures: Path = FIGURES, workers: int | None = None, pages=PAGES
+) -> dict[str, str]:
+    """Recompute everything, write the figures and the blocks of the README and the docs pages;
+    returns the blocks."""
     import shutil
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -187,12 +200,10 @@ def generate(readme: Path = README, figures: Path = FIGURES, workers: int | None
             shutil.copyfile(Path(tmp) / "repro" / f, figures / f)
         ds = sweep_dataset(Path(tmp) / "sweep", workers=workers)
         sweep_figures(ds, figures)
-    new = {
-        "reproduce-table": reproduce_table(runs),
-        "reproduce-claims": reproduce_claims(runs),
-        "sweep-claims": sweep_claims(ds),
-    }
-    readme.write_text(replace_blocks(readme.read_text(encoding="utf-8"), new), encoding="utf-8")
+    new = _blocks_now(runs, ds)
+    for doc in (readme, *pages):
+        if doc.exists():
+            doc.write_text(replace_blocks(doc.read_text(encoding="utf-8"), new), encoding="utf-8")
     return new
 
 
@@ -212,21 +223,22 @@ def sweep_figures(ds, figures: Path) -> None:
         plt.close(fig)
 
 
-def check(readme: Path = README, workers: int | None = None) -> list[str]:
-    """Recompute the numbers (no figures) and list the README numbers that differ."""
+def check(readme: Path = README, workers: int | None = None, pages=PAGES) -> list[str]:
+    """Recompute the numbers (no figures) and list the numbers of the README and the docs pages
+    that differ."""
     with tempfile.TemporaryDirectory() as tmp:
         runs = reproduce_runs(Path(tmp), figures=False)
         ds = sweep_dataset(Path(tmp) / "sweep", workers=workers)
-    new = {
-        "reproduce-table": reproduce_table(runs),
-        "reproduce-claims": reproduce_claims(runs),
-        "sweep-claims": sweep_claims(ds),
-    }
+    new = _blocks_now(runs, ds)
     old = blocks(readme.read_text(encoding="utf-8"))
     problems = [f"README has no generated block {k!r}" for k in new if k not in old]
     for k in new:
         if k in old:
             problems += compare(old[k], new[k], k)
+    for page in pages:
+        if page.exists():
+            for k, body in blocks(page.read_text(encoding="utf-8")).items():
+                problems += compare(body, new[k], f"{page.name}: {k}") if k in new else [f"{page.name}: {k}?"]
     return problems
 
 
