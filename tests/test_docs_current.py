@@ -24,8 +24,10 @@ def test_compare_flags_a_changed_digit_and_accepts_rounding():
     assert docs_gen.compare("| dry | 250.6 |", "| dry | 250.8 |", "t") == [
         "t: README shows 250.6, the code now gives 250.8"
     ]
-    assert docs_gen.compare("78 impacts", "64 impacts", "t") == ["t: README shows 78, the code now gives 64"]
-    assert docs_gen.compare("a 1 b", "a 1 2 b", "t") == ["t: 1 numbers in the README, 2 now"]
+    assert docs_gen.compare("78 impacts", "64 impacts", "t") == [
+        "t: the document shows 78, the code now gives 64"
+    ]
+    assert docs_gen.compare("a 1 b", "a 1 2 b", "t") == ["t: 1 numbers in the document, 2 now"]
 
 
 def test_blocks_round_trip():

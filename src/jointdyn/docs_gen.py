@@ -167,14 +167,14 @@ def compare(old: str, new: str, name: str) -> list[str]:
     rounding boundary may print either way)."""
     a, b = NUMBER.findall(old), NUMBER.findall(new)
     if len(a) != len(b):
-        return [f"{name}: {len(a)} numbers in the README, {len(b)} now"]
+        return [f"{name}: {len(a)} numbers in the document, {len(b)} now"]
     out = []
     for x, y in zip(a, b):
         fx, fy = float(x.replace("−", "-")), float(y.replace("−", "-"))
         decimals = len(x.split(".")[1].split("e")[0]) if "." in x else 0
         exp = int(x.split("e")[1]) if "e" in x else 0
         if abs(fx - fy) > 1.0001 * 10.0 ** (exp - decimals):
-            out.append(f"{name}: README shows {x}, the code now gives {y}")
+            out.append(f"{name}: the document shows {x}, the code now gives {y}")
     return out
 
 
