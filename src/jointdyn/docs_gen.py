@@ -49,7 +49,7 @@ def _g(v: float, digits: int = 4) -> str:
     """``digits`` significant digits, no exponent for the magnitudes shown here."""
     if isinstance(v, float) and math.isnan(v):
         return "–"
-    return f"{v:.{digits}g}"
+    return f"{v:#.{digits}g}".rstrip(".")  # keeps trailing zeros (127.0), no bare point (-1263)
 
 
 # -- computing --------------------------------------------------------------------------------
