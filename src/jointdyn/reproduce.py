@@ -171,10 +171,11 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
                     label=runs[n][3].label,
                 )
         axs[1, 0].set_title("dry clearance joint (own scale: impact spikes)", fontsize=10)
-    for ax in axs[:, 0]:
+    for k, ax in enumerate(axs[:, 0]):
         ax.set_ylabel("moment [N·m]")
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8, loc="lower left")
+        # the dry spikes reach down on the left half: its legend goes lower right
+        ax.legend(fontsize=8, loc="lower left" if k == 0 else "lower right")
     axs[-1, 0].set_xlabel(f"crank angle [deg], {one}")
     axs[-1, 0].set_xlim(0, 360 * min(1.0, revs))
     plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
