@@ -22,7 +22,7 @@ def test_compare_flags_a_changed_digit_and_accepts_rounding():
     # one unit in the last printed digit is accepted (a value on a rounding boundary), two are not
     assert docs_gen.compare("| dry | 250.6 | −885.7 |", "| dry | 250.7 | -885.7 |", "t") == []
     assert docs_gen.compare("| dry | 250.6 |", "| dry | 250.8 |", "t") == [
-        "t: README shows 250.6, the code now gives 250.8"
+        "t: the document shows 250.6, the code now gives 250.8"
     ]
     assert docs_gen.compare("78 impacts", "64 impacts", "t") == [
         "t: the document shows 78, the code now gives 64"
