@@ -188,7 +188,7 @@ def kernel(model, xi, xi_dot, Omega, c, mu=MU, R=R, L=L):
     return KERNELS[model](xi, xi_dot, xi * Omega, mu, R, L, c, NO_PARAMS, TABLE)
 
 
-# ---- spec tables ------------------------------------------------------------------------------
+# ---- reference tables [T164] --------------------------------------------------------------------------
 
 
 @pytest.mark.parametrize("model", ["alshaer2005", "ott"])
@@ -586,9 +586,9 @@ if __name__ == "__main__":  # measured agreement, for the record
             rel(kernel(m, xi, xd, OMEGA - 2 * gd, c), TABLES_9[m][i])
             for i, (xi, xd, gd, c) in enumerate(STATES)
         ]
-        print(f"{m} vs spec 9-digit table: max rel {max(errs):.2e}")
+        print(f"{m} vs the 9-digit table [T164]: max rel {max(errs):.2e}")
     errs = [
         rel(reynolds.pi_film_force(xi, xd, gd, OMEGA, 0.0, MU, R, L, c, gamma=GAMMA), PI_9[i])
         for i, (xi, xd, gd, c) in enumerate(STATES)
     ]
-    print(f"numerical Reynolds π-film vs spec 9-digit table: max rel {max(errs):.2e}")
+    print(f"numerical Reynolds π-film vs the 9-digit table [T164]: max rel {max(errs):.2e}")
