@@ -30,10 +30,11 @@ def _axes(ax, figsize=(7, 4)):
 
 
 def _angle_ticks(ax, span_deg: float) -> None:
-    """Ticks every 90° up to two revolutions, every 360° beyond."""
+    """Crank-angle ticks: every 10°/30° on short windows, 90° up to two revolutions, 360° beyond."""
     from matplotlib.ticker import MultipleLocator
 
-    ax.xaxis.set_major_locator(MultipleLocator(90 if span_deg <= 720 + 1e-9 else 360))
+    steps = ((60, 10), (180, 30), (720, 90))
+    ax.xaxis.set_major_locator(MultipleLocator(next((d for lim, d in steps if span_deg <= lim + 1e-9), 360)))
 
 
 # -- array helpers --------------------------------------------------------------------------------
@@ -123,7 +124,7 @@ def describe(res, sep: str = "\n") -> str:
             if hasattr(e, "viscosity"):
                 p += f", μ = {e.viscosity:.3g} Pa·s, film {e.film}"
             parts.append(p)
-    return head + (sep + "; ".join(parts) if parts else "")
+    return head + (sep + sep.join(parts) if parts else "")
 
 
 def _auto_revs(res, what, last_revs):
@@ -229,7 +230,7 @@ def run_figure(
             continue
         elif what == "film":
             positive = True
-            for e in _journal(res, element):
+            for k, e in enumerate(_journal(res, element)):
                 h = res.element(e, "h_min") * 1e6
                 positive &= bool(np.all(h > 0))
                 (ln,) = ax.plot(xs, h, lw=1.0, label=_label(res, f"{e}: h_min", many, lab))
@@ -240,7 +241,7 @@ def run_figure(
                     f"min {h[i]:.3g} µm at {where}",
                     (xs[i], h[i]),
                     textcoords="offset points",
-                    xytext=(6, 8),
+                    xytext=(6, 8 + 11 * k),  # stacked when several journals share the axes
                     fontsize=8,
                     color=ln.get_color(),
                 )
@@ -276,7 +277,7 @@ def run_figure(
             for e in res.system.element_names:
                 p = -res.element(e, "power")
                 w = np.concatenate([[0.0], np.cumsum(0.5 * (p[1:] + p[:-1]) * np.diff(t))])
-                ax.plot(xs, w, lw=1.0, label=_label(res, f"{e}: energy dissipated", many, lab))
+                ax.plot(xs, w, lw=1.0, label=_label(res, f"{e}: −∫ power dt", many, lab))
             try:
                 d = res.driver()
                 pw = res.multipliers(d)[:, 0] * res.qd[:, 3 * res.system.body_names.index(_driven(res)) + 2]
@@ -284,7 +285,7 @@ def run_figure(
                 ax.plot(xs, w, "k--", lw=0.8, label=_label(res, f"{d}: net work input", many, lab))
             except KeyError:
                 pass
-            ax.set_ylabel("energy since the window start [J]")
+            ax.set_ylabel("energy removed from the mechanism [J]\n(< 0: supplied), since the window start")
         ax.set_xlabel(xlabel)
         _finish_x(ax, xs, is_angle)
     if len(runs) == 1:
