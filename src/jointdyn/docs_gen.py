@@ -247,6 +247,8 @@ def main(argv=None) -> int:
     ap.add_argument("--check", action="store_true", help="only compare the README numbers; exit 1 if stale")
     ap.add_argument("--workers", type=int, default=None, help="processes for the sweep (default: all cores)")
     a = ap.parse_args(argv)
+    if not README.exists():
+        ap.error(f"no README.md at {README}: run from a source checkout (pip install -e .)")
     if a.check:
         problems = check(workers=a.workers)
         for p in problems:
