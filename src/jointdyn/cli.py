@@ -331,6 +331,11 @@ def film_force_cmd(
         fh.close()
 
 
+from .bearing.cli import bearing_table_cmd  # noqa: E402
+
+app.command("bearing-table")(bearing_table_cmd)
+
+
 @app.command("list")
 def list_registries():
     """Show the registries: constraints, force elements, film/contact/friction laws, solvers, models."""

@@ -1,5 +1,6 @@
-"""Finite-length bearing: 2-D Reynolds equation by finite differences, Gümbel cavitation,
-tabulated for use inside a simulation [T36–T38].
+"""Finite-length bearing: 2-D Reynolds equation with Gümbel (finite differences) or Reynolds
+(Swift–Stieber, finite volumes + LCP, :mod:`jointdyn.bearing`) cavitation, tabulated for use
+inside a simulation [T36–T38, T80].
 
 Nondimensional form (θ from the maximum film, ζ = z/R ∈ [−λ, λ], λ = L/D, H = 1 + ξ cos θ):
 ∂/∂θ(H³ ∂P/∂θ) + ∂/∂ζ(H³ ∂P/∂ζ) = S(θ), P = 0 at ζ = ±λ, periodic in θ. The pressure is
@@ -73,15 +74,90 @@ def unit_forces(th, zeta, PA, PB, psi):
     return sp @ np.cos(th), sp @ np.sin(th)
 
 
+CAVITATION = ("gumbel", "reynolds")
+#: default cavitation condition of the ``finite`` film in dynamics: ``gumbel`` (see [T80])
+DEFAULT_CAVITATION = "gumbel"
+
+
+def _builder_hash() -> str:
+    """Hash of the table builder's sources (this file, the FV assembly and the LCP solver): any
+    change of the builder invalidates the cached tables [T80]."""
+    from ..bearing import fv, lcp
+
+    h = hashlib.sha1()
+    for mod in (__file__, fv.__file__, lcp.__file__):
+        h.update(Path(mod).read_bytes())
+    return h.hexdigest()[:12]
+
+
+def _reynolds_unit(xi: float, lam: float, psi: np.ndarray, mesh=(96, 12)) -> np.ndarray:
+    """Columns (f_r, f_t, P̂_max, θ_pmax, θ_rupture, side flow) per ψ for unit (A, B) =
+    (sin ψ, cos ψ) with the Swift–Stieber condition on a periodic film (no supply line): one LCP
+    per ψ (active set warm-started from the neighbouring ψ) on the FV mesh [T72, T80, T83]."""
+    from ..bearing.film import end_flux, peak_of, rupture_of
+    from ..bearing.fv import assemble
+    from ..bearing.lcp import solve_lcp
+
+    nt, nz = mesh
+    prob = assemble(xi, lam, nt, nz)
+    w = 2.0 * prob.area  # both halves of the bearing
+    wc = w * np.repeat(np.cos(prob.theta), nz)
+    ws = w * np.repeat(np.sin(prob.theta), nz)
+    dth = 2.0 * np.pi / nt * prob.dtheta
+    H = 1.0 + xi * np.cos(prob.theta)
+    z = prob.zeta
+    out = np.empty((psi.size, 6))
+    cav = None
+    for k, ps in enumerate(psi):
+        P, cav, _ = solve_lcp(prob.M, math.sin(ps) * prob.bA + math.cos(ps) * prob.bB, None, cav)
+        P2 = P.reshape(nt, nz)
+        pm, tp = peak_of(prob.theta, P2[:, 0])
+        side = end_flux(dth, H, P2[:, -1], P2[:, -2], z[-1] - z[-2], z[-1] - z[-3])
+        out[k] = (P @ wc, P @ ws, pm, tp, rupture_of(prob.theta, P2[:, 0], "reynolds"), side)
+    return out
+
+
+def _gumbel_outputs(xi: float, th, zeta, PA, PB, psi: np.ndarray) -> np.ndarray:
+    """Columns (P̂_max, θ_pmax, θ_rupture, side flow) per ψ of the clipped FD film [T83]; the
+    side flow is the end flux of the clipped field (Gümbel's film is not mass conserving)."""
+    from ..bearing.film import end_flux, peak_of, rupture_of
+
+    mid = zeta.size // 2  # ζ = 0
+    H = 1.0 + xi * np.cos(th)
+    dth = np.full(th.size, th[1] - th[0])
+    dz = zeta[1] - zeta[0]
+    out = np.empty((psi.size, 4))
+    for k, ps in enumerate(psi):
+        P = np.maximum(math.sin(ps) * PA + math.cos(ps) * PB, 0.0)
+        pm, tp = peak_of(th, P[:, mid])
+        side = end_flux(dth, H, P[:, -2], P[:, -3], dz, 2.0 * dz)
+        out[k] = (pm, tp, rupture_of(th, P[:, mid], "gumbel"), side)
+    return out
+
+
 def build_table(
-    L_over_D: float, n_xi: int = 40, n_psi: int = 97, n_theta: int = 180, n_zeta: int = 24, cache: bool = True
+    L_over_D: float,
+    n_xi: int = 40,
+    n_psi: int = 97,
+    n_theta: int = 180,
+    n_zeta: int = 24,
+    cache: bool = True,
+    cavitation: str = DEFAULT_CAVITATION,
 ) -> np.ndarray:
-    """Table for the ``finite`` kernel, shape (2 + n_xi·n_psi, 2): row 0 = (n_xi, n_psi),
-    row 1 = (ξ_max, 0), then (f_r, f_t)·(1−ξ²)^{3/2} row-major in (ξ, ψ) [T37]. Cached on disk
-    under ~/.cache/jointdyn (keyed by all arguments)."""
+    """Table for the ``finite`` kernels, shape (2 + 4·n_xi·n_psi, 2): row 0 = (n_xi, n_psi),
+    row 1 = (ξ_max, number of blocks = 4), then four blocks of n_xi·n_psi rows, row-major in
+    (ξ, ψ): (f_r, f_t)·(1−ξ²)^{3/2} [T37] (read by :func:`finite_force`), then for
+    :func:`finite_outputs` [T83]: (P̂_max, side flow)·(1−ξ²)^{3/2}, (cos, sin) of θ_pmax and
+    (cos, sin) of the mid-plane rupture angle. ``cavitation``:
+    "gumbel" (FD full film clipped, n_theta × n_zeta cells [T36]) or "reynolds" (Swift–Stieber
+    LCP on the FV mesh 96 × 12 of the half bearing [T80]). Cached on disk under
+    ~/.cache/jointdyn/finite_tables, keyed by all arguments and a hash of the builder's sources."""
     if not (math.isfinite(L_over_D) and L_over_D > 0):
         raise ValueError(f"L_over_D = {L_over_D!r} [-]: must be > 0")
-    key = hashlib.sha1(repr((1, L_over_D, n_xi, n_psi, n_theta, n_zeta, XI_MAX)).encode()).hexdigest()[:16]
+    if cavitation not in CAVITATION:
+        raise ValueError(f"cavitation = {cavitation!r}: must be one of {', '.join(CAVITATION)}")
+    args = (2, L_over_D, n_xi, n_psi, n_theta, n_zeta, XI_MAX, cavitation, _builder_hash())
+    key = hashlib.sha1(repr(args).encode()).hexdigest()[:16]
     base = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "jointdyn" / "finite_tables"
     f = base / f"{key}.npy"
     if cache and f.exists():
@@ -89,15 +165,29 @@ def build_table(
     u = np.linspace(0.0, -math.log(1 - XI_MAX), n_xi)
     xis = 1 - np.exp(-u)
     psi = np.linspace(-np.pi, np.pi, n_psi)
-    tab = np.zeros((2 + n_xi * n_psi, 2))
+    nb = n_xi * n_psi
+    tab = np.zeros((2 + 4 * nb, 2))
     tab[0] = (n_xi, n_psi)
-    tab[1] = (XI_MAX, 0.0)
+    tab[1] = (XI_MAX, 4.0)
     for a, xi in enumerate(xis):
-        th, zeta, PA, PB = solve_unit_pressures(xi, L_over_D, n_theta, n_zeta)
-        fr, ft = unit_forces(th, zeta, PA, PB, psi)
+        if cavitation == "gumbel":
+            th, zeta, PA, PB = solve_unit_pressures(xi, L_over_D, n_theta, n_zeta)
+            fr, ft = unit_forces(th, zeta, PA, PB, psi)
+            o = _gumbel_outputs(float(xi), th, zeta, PA, PB, psi)
+        else:
+            r = _reynolds_unit(float(xi), L_over_D, psi)
+            fr, ft, o = r[:, 0], r[:, 1], r[:, 2:]
         scale = (1 - xi * xi) ** 1.5
-        tab[2 + a * n_psi : 2 + (a + 1) * n_psi, 0] = fr * scale
-        tab[2 + a * n_psi : 2 + (a + 1) * n_psi, 1] = ft * scale
+        rows = slice(2 + a * n_psi, 2 + (a + 1) * n_psi)
+        tab[rows, 0] = fr * scale
+        tab[rows, 1] = ft * scale
+        rows = slice(2 + nb + a * n_psi, 2 + nb + (a + 1) * n_psi)
+        tab[rows, 0] = o[:, 0] * scale
+        tab[rows, 1] = o[:, 3] * scale
+        for blk, col in ((2, 1), (3, 2)):
+            rows = slice(2 + blk * nb + a * n_psi, 2 + blk * nb + (a + 1) * n_psi)
+            tab[rows, 0] = np.cos(o[:, col])
+            tab[rows, 1] = np.sin(o[:, col])
     if cache:
         try:
             base.mkdir(parents=True, exist_ok=True)
@@ -157,3 +247,56 @@ def finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
         out[comp] = _catmull_rom(col[0], col[1], col[2], col[3], wa)
     s = 6.0 * mu * R * R * R * R / (c * c) * rho / ((1.0 - xi) * (1.0 + xi)) ** 1.5
     return out[0] * s, out[1] * s
+
+
+@njit(cache=True)
+def _bicubic(table, base, comp, xi, psi):
+    """Bicubic (Catmull–Rom) value of column ``comp`` of the block starting at row ``base``, at
+    (u = −ln(1−min(ξ, ξ_max)), ψ): the interpolation of :func:`finite_force` [T37]."""
+    n_xi = int(table[0, 0])
+    n_psi = int(table[0, 1])
+    xmax = table[1, 0]
+    umax = -math.log(1.0 - xmax)
+    u = -math.log(1.0 - min(xi, xmax))
+    su = u / umax * (n_xi - 1)
+    a = min(int(su), n_xi - 2)
+    wa = su - a
+    sp = (psi + math.pi) / (2.0 * math.pi) * (n_psi - 1)
+    b = min(int(sp), n_psi - 2)
+    wb = sp - b
+    col = np.zeros(4)
+    v = np.zeros(4)
+    for i in range(4):
+        ai = min(max(a - 1 + i, 0), n_xi - 1)
+        for j in range(4):
+            v[j] = table[base + ai * n_psi + (b - 1 + j) % (n_psi - 1), comp]
+        col[i] = _catmull_rom(v[0], v[1], v[2], v[3], wb)
+    if a == 0:
+        col[0] = 2.0 * col[1] - col[2]
+    if a + 2 >= n_xi - 1:
+        col[3] = 2.0 * col[2] - col[1]
+    return _catmull_rom(col[0], col[1], col[2], col[3], wa)
+
+
+@njit(cache=True)
+def finite_outputs(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    """Tabulated film outputs of the ``finite`` model [T83]: (p_max [Pa], θ_pmax [rad],
+    θ_rupture [rad] at the mid-plane, θ from the maximum film in [0, 2π), side flow through both
+    ends Q_s [m³/s]); p_max and Q_s are homogeneous of degree 1 in (A, B), the angles of degree 0
+    (interpolated as (cos, sin)). Same arguments as :func:`finite_force`. (0, nan, nan, 0) at
+    rest; all nan for a table without output blocks."""
+    A = xi_dot
+    B = xi_Omega / (2.0 + xi * xi)
+    rho = math.sqrt(A * A + B * B)
+    if table[1, 1] < 4.0:
+        return math.nan, math.nan, math.nan, math.nan
+    if rho == 0.0:
+        return 0.0, math.nan, math.nan, 0.0
+    nb = int(table[0, 0]) * int(table[0, 1])
+    psi = math.atan2(A, B)
+    s = rho / ((1.0 - xi) * (1.0 + xi)) ** 1.5
+    pm = _bicubic(table, 2 + nb, 0, xi, psi) * s * 6.0 * mu * R * R / (c * c)
+    qs = _bicubic(table, 2 + nb, 1, xi, psi) * s * 0.5 * c * R * R
+    tp = math.atan2(_bicubic(table, 2 + 2 * nb, 1, xi, psi), _bicubic(table, 2 + 2 * nb, 0, xi, psi))
+    tr = math.atan2(_bicubic(table, 2 + 3 * nb, 1, xi, psi), _bicubic(table, 2 + 3 * nb, 0, xi, psi))
+    return pm, tp % (2.0 * math.pi), tr % (2.0 * math.pi), qs

@@ -1,0 +1,20 @@
+"""Steady journal-bearing engineering: 2-D Reynolds solver with cavitation conditions, design
+quantities, the Raimondi–Boyd table, equilibrium for a load, film outputs, shear torque
+[T70–T83]. The names below are imported lazily, so importing ``jointdyn.cli`` (which registers
+``bearing-table``) does not load the solver."""
+
+from __future__ import annotations
+
+__all__ = ["CAVITATION", "COLUMNS", "MODELS", "bearing_table", "equilibrium"]
+
+
+def __getattr__(name: str):
+    if name in ("COLUMNS", "MODELS", "bearing_table", "equilibrium"):
+        from . import design
+
+        return getattr(design, name)
+    if name == "CAVITATION":
+        from .lcp import CAVITATION
+
+        return CAVITATION
+    raise AttributeError(f"module 'jointdyn.bearing' has no attribute {name!r}")

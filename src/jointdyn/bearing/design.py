@@ -1,0 +1,215 @@
+"""Steady journal-bearing design quantities: the Raimondi–Boyd table and the equilibrium for a
+given load [T73–T79].
+
+Steady operation: bearing fixed, journal speed ω = 2πN > 0, no squeeze (A = 0, B = ξω/(2+ξ²)).
+Raimondi–Boyd definitions (Trans. ASLE 1 (1958) 159–209): S = (R/c)²μN/P with P = W/(2RL) and N
+in rev/s; attitude φ between the load line and the line of centres; friction variable (R/c)·f,
+f = T_J/(W R) with T_J the friction torque on the journal; flow variable Q/(R c N L), Q the flow
+into the film at the supply (maximum film); side-flow ratio Q_s/Q; pressure ratio P/p_max;
+θ_pmax the angle from the peak pressure forward to the minimum film; θ_end the angle from the
+minimum film forward to the film end (rupture) [T77].
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import film as fm
+from .fv import DEFAULT_MESH, check_ld, check_xi
+from .lcp import check_cavitation
+from .long_short import long_steady, short_steady
+
+#: the columns of :func:`bearing_table`, in order
+COLUMNS = (
+    "eps",
+    "ld",
+    "sommerfeld",
+    "attitude_deg",
+    "friction_variable",
+    "flow_variable",
+    "side_flow_ratio",
+    "pressure_ratio",
+    "theta_pmax_deg",
+    "theta_end_deg",
+)
+MODELS = ("finite", "long", "short")
+#: largest eccentricity ratio the equilibrium search may use [-]
+EPS_MAX = 0.999
+
+
+def _check_model(model, cavitation):
+    if model not in MODELS:
+        raise ValueError(f"model = {model!r}: must be one of {', '.join(MODELS)}")
+    check_cavitation(cavitation)
+    if model == "short" and cavitation != "gumbel":
+        raise ValueError(f"cavitation = {cavitation!r} with model 'short': Ocvirk's film allows only gumbel")
+
+
+def finite_steady(eps: float, ld: float, cavitation: str = "reynolds", mesh=DEFAULT_MESH, cavitated=None):
+    """Nondimensional steady quantities of the finite bearing [T73–T77]: dict with W̄ = W c²/(μωR⁴),
+    F̄_r, F̄_t, the Raimondi–Boyd variables, the solver's residual and iteration count, and the
+    cavitated set (warm start for the next ε). Lubricant supplied at the maximum film (θ = 0)."""
+    B = eps / (2.0 + eps * eps)  # ξΩ/(2+ξ²) with Ω = ω = 1
+    f = fm.solve(eps, ld, 0.0, B, cavitation, feed=True, mesh=mesh, cavitated=cavitated)
+    fr, ft = fm.forces(f)
+    Fr, Ft = 6.0 * fr, 6.0 * ft  # F = R²·(6μωR²/c²)∫∫P → units μωR⁴/c² [T74]
+    W = math.hypot(Fr, Ft)
+    q = fm.inlet_flow(f)
+    pmax, thp = fm.peak(f)
+    the = fm.rupture_angle(f, cavitation)
+    out = {
+        "W": W,
+        "Fr": Fr,
+        "Ft": Ft,
+        "couette": fm.couette_integral(f),
+        "flow": q,
+        "side": fm.side_flow(f),
+        "pmax": pmax,
+        "theta_peak": thp,
+        "theta_rupture": the,
+        "residual": f.residual,
+        "iterations": f.iterations,
+        "cavitated": (f.P.ravel() <= 0.0) if cavitation == "reynolds" else None,
+    }
+    return out
+
+
+def _row(eps, ld, d):
+    """Raimondi–Boyd variables from the nondimensional results d (units μωR⁴/c², λ = ld) [T77]."""
+    W = d["W"]
+    return {
+        "eps": eps,
+        "ld": ld,
+        "sommerfeld": 2.0 * ld / (math.pi * W),  # S = (R/c)²μN/P = 4λ/(2πW̄)
+        "attitude_deg": math.degrees(math.atan2(d["Ft"], -d["Fr"])),
+        # T_J = (μωR⁴/c)(C + ξF̄_t/2) [T75]; (R/c)f = T_J/(W c)
+        "friction_variable": (d["couette"] + 0.5 * eps * d["Ft"]) / W,
+        "flow_variable": math.pi * d["flow"] / (2.0 * ld),  # Q = (ωR²c/2)·q
+        "side_flow_ratio": d["side"] / d["flow"],
+        "pressure_ratio": W / (24.0 * ld * d["pmax"]),  # P = W/(4λR²), p_max = (6μωR²/c²)P_max
+        "theta_pmax_deg": math.degrees(math.pi - d["theta_peak"]),
+        "theta_end_deg": math.degrees(d["theta_rupture"] - math.pi),
+    }
+
+
+def _check_eps_list(eps_list):
+    e = np.atleast_1d(np.asarray(eps_list, dtype=float))
+    if e.size == 0:
+        raise ValueError("eps list is empty: give at least one eccentricity ratio in [0, 1)")
+    for x in e:
+        if not (math.isfinite(x) and 0.0 < x < 1.0):
+            raise ValueError(f"eps = {float(x)!r} [-]: must be in (0, 1) (ε = 0 carries no load)")
+    return e
+
+
+def steady_quantities(model: str, cavitation: str, ld: float, eps: float, mesh=DEFAULT_MESH, cavitated=None):
+    """Nondimensional steady results (see :func:`finite_steady`) of ``model`` at one ε."""
+    if model == "finite":
+        return finite_steady(eps, ld, cavitation, mesh, cavitated)
+    if model == "long":
+        return long_steady(eps, ld, cavitation)
+    return short_steady(eps, ld)
+
+
+def bearing_table(model: str, cavitation: str, ld: float, eps_list, mesh=DEFAULT_MESH) -> dict:
+    """Steady design table [T77]: dict column → array (``COLUMNS``), one entry per ε.
+
+    model       "finite" (2-D Reynolds [T70–T72]), "long" (L/D → ∞ [T78]) or "short" (Ocvirk [T79])
+    cavitation  "reynolds" (Swift–Stieber, as Raimondi–Boyd) or "gumbel" (half-Sommerfeld)
+    ld          L/D > 0 [-] (``long`` uses it only in the ``ld`` column)
+    eps_list    eccentricity ratios, each in (0, 1) [-]
+    mesh        finite-volume mesh of ``finite`` (cells around, cells on the half length) [-]
+    """
+    _check_model(model, cavitation)
+    check_ld(float(ld))
+    e = _check_eps_list(eps_list)
+    cav = None
+    rows: list = [None] * e.size
+    for k in np.argsort(e):  # ascending ε: the cavitated set of the previous ε is the warm start
+        d = steady_quantities(model, cavitation, float(ld), float(e[k]), mesh, cav)
+        cav = d.get("cavitated")
+        rows[k] = _row(float(e[k]), float(ld), d)
+    return {c: np.array([r[c] for r in rows]) for c in COLUMNS}
+
+
+def equilibrium(
+    load: float,
+    speed: float,
+    radius: float,
+    length: float,
+    clearance: float,
+    viscosity: float,
+    model: str = "finite",
+    cavitation: str = "reynolds",
+    mesh=DEFAULT_MESH,
+) -> dict:
+    """Steady operating point for a load W and journal speed N [T77]: solves S(ε) = S_given.
+
+    load       W > 0 [N]
+    speed      N > 0 [rev/s] (bearing fixed)
+    radius     journal radius R > 0 [m]
+    length     bearing length L > 0 [m]
+    clearance  radial clearance c > 0 [m]
+    viscosity  μ > 0 [Pa·s]
+    Returns dict: eps [-], attitude_deg [deg], h_min [m], friction_torque [N·m] (on the journal,
+    resisting), power_loss [W], peak_pressure [Pa], theta_pmax_deg, theta_end_deg [deg],
+    flow [m³/s], side_flow [m³/s], sommerfeld [-].
+    """
+    for name, v, unit in (
+        ("load", load, "N"),
+        ("speed", speed, "rev/s"),
+        ("radius", radius, "m"),
+        ("length", length, "m"),
+        ("clearance", clearance, "m"),
+        ("viscosity", viscosity, "Pa·s"),
+    ):
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"{name} = {v!r} [{unit}]: must be finite and > 0")
+    _check_model(model, cavitation)
+    ld = length / (2.0 * radius)
+    S_given = (radius / clearance) ** 2 * viscosity * speed / (load / (2.0 * radius * length))
+
+    def S_of(eps):
+        return _row(eps, ld, steady_quantities(model, cavitation, ld, eps, mesh))["sommerfeld"]
+
+    S_max_load = S_of(EPS_MAX)
+    if S_given < S_max_load:
+        raise ValueError(
+            f"load = {load!r} [N]: the bearing cannot carry it below eps = {EPS_MAX} "
+            f"(S = {S_given:.4g} < S(eps = {EPS_MAX}) = {S_max_load:.4g}); the largest load is "
+            f"{load * S_given / S_max_load:.4g} N"
+        )
+    from scipy.optimize import brentq
+
+    # S falls monotonically with ε; solve in u = −ln(1−ε) where log S is nearly linear
+    def g(u):
+        return math.log(S_of(1.0 - math.exp(-u))) - math.log(S_given)
+
+    lo, hi = 1e-4, -math.log(1.0 - EPS_MAX)
+    if g(lo) < 0.0:
+        raise ValueError(
+            f"load = {load!r} [N]: too light, eps < 1e-4 (S = {S_given:.4g}); the film is Petroff's"
+        )
+    u = brentq(g, lo, hi, xtol=1e-12, rtol=1e-10)
+    eps = 1.0 - math.exp(-u)
+    check_xi(eps)
+    d = steady_quantities(model, cavitation, ld, eps, mesh)
+    r = _row(eps, ld, d)
+    omega = 2.0 * math.pi * speed
+    T = r["friction_variable"] * load * clearance  # (R/c)f = T/(W c)
+    Q = r["flow_variable"] * radius * clearance * speed * length
+    return {
+        "eps": eps,
+        "attitude_deg": r["attitude_deg"],
+        "h_min": clearance * (1.0 - eps),
+        "friction_torque": T,
+        "power_loss": T * omega,
+        "peak_pressure": load / (2.0 * radius * length) / r["pressure_ratio"],
+        "theta_pmax_deg": r["theta_pmax_deg"],
+        "theta_end_deg": r["theta_end_deg"],
+        "flow": Q,
+        "side_flow": Q * r["side_flow_ratio"],
+        "sommerfeld": S_given,
+    }

@@ -1,0 +1,82 @@
+"""``jointdyn bearing-table``: CSV columns, operating point, one-line errors [T77]."""
+
+import csv
+import io
+
+import pytest
+from typer.testing import CliRunner
+
+from jointdyn.bearing.design import COLUMNS, bearing_table
+from jointdyn.cli import app
+
+runner = CliRunner()
+
+
+def test_table_csv_matches_the_function(tmp_path):
+    out = tmp_path / "t.csv"
+    r = runner.invoke(app, ["bearing-table", "--ld", "0.5", "--eps", "0.2,0.6", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    rows = list(csv.DictReader(io.StringIO(out.read_text())))
+    assert tuple(rows[0]) == COLUMNS and len(rows) == 2
+    tab = bearing_table("finite", "reynolds", 0.5, [0.2, 0.6])
+    for i, row in enumerate(rows):
+        for c in COLUMNS:  # written with 6 significant digits
+            assert float(row[c]) == pytest.approx(tab[c][i], rel=1e-5)
+
+
+def test_operating_point_printed():
+    args = ["bearing-table", "--ld", "1", "--eps", "0.5", "--load", "2000", "--speed", "30"]
+    args += ["--radius", "0.02", "--clearance", "4e-5", "--viscosity", "0.03"]
+    r = runner.invoke(app, args)
+    assert r.exit_code == 0, r.output
+    assert "power_loss" in r.output and "[W]" in r.output and "h_min" in r.output
+
+
+@pytest.mark.parametrize(
+    "extra, msg",
+    [
+        (["--ld", "1", "--eps", "1.5"], "eps = 1.5 [-]: must be in (0, 1)"),
+        (["--ld", "0", "--eps", "0.5"], "L/D = 0.0 [-]: must be finite and > 0"),
+        (["--ld", "1", "--cavitation", "elrod"], "cavitation = 'elrod': must be one of gumbel, reynolds"),
+        (["--ld", "1", "--eps", "x"], "--eps 'x'"),
+        (["--ld", "1", "--load", "100"], "--load needs --speed"),
+        (
+            [
+                "--ld",
+                "1",
+                "--load",
+                "0",
+                "--speed",
+                "30",
+                "--radius",
+                "0.02",
+                "--clearance",
+                "4e-5",
+                "--viscosity",
+                "0.03",
+            ],
+            "load = 0.0 [N]: must be finite and > 0",
+        ),
+        (
+            [
+                "--ld",
+                "1",
+                "--load",
+                "2e7",
+                "--speed",
+                "30",
+                "--radius",
+                "0.02",
+                "--clearance",
+                "4e-5",
+                "--viscosity",
+                "0.03",
+            ],
+            "cannot carry it below eps = 0.999",
+        ),
+    ],
+)
+def test_bad_input_exit_2_one_line(extra, msg):
+    r = runner.invoke(app, ["bearing-table", *extra])
+    assert r.exit_code == 2
+    assert msg in r.output.replace("\n", " ")
