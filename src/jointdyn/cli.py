@@ -81,18 +81,42 @@ def _one_line_errors(out: Path | None = None):
         warnings.showwarning = old
 
 
-def _progress(description: str):
-    from rich.progress import BarColumn, Progress, TimeElapsedColumn, TimeRemainingColumn
+class _progress:
+    """A rich progress display that appears at the first update (so that a run refused by
+    its checks prints nothing but its one error line)."""
 
-    return Progress(
-        "[progress.description]{task.description}",
-        BarColumn(),
-        "[progress.percentage]{task.percentage:>3.0f}%",
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        console=console,
-        transient=False,
-    )
+    def __init__(self, description: str):
+        self.description = description
+        self._prog = None
+        self._tasks: list = []
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self._prog is not None:
+            self._prog.stop()
+
+    def add_task(self, name: str, total: float) -> int:
+        self._tasks.append((name, total))
+        return len(self._tasks) - 1
+
+    def update(self, task: int, completed: float) -> None:
+        if self._prog is None:
+            from rich.progress import BarColumn, Progress, TimeElapsedColumn, TimeRemainingColumn
+
+            self._prog = Progress(
+                "[progress.description]{task.description}",
+                BarColumn(),
+                "[progress.percentage]{task.percentage:>3.0f}%",
+                TimeElapsedColumn(),
+                TimeRemainingColumn(),
+                console=console,
+                transient=False,
+            )
+            self._ids = [self._prog.add_task(escape(n), total=t) for n, t in self._tasks]
+            self._prog.start()
+        self._prog.update(self._ids[task], completed=completed)
 
 
 _JOINT_HELP = "piston-pin joint kind: " + ", ".join(options.joints())
@@ -106,7 +130,7 @@ def _solver_help() -> str:
 
 #: CLI spelling of the slider-crank builder arguments
 OPTION_NAMES = {k: "--" + k.replace("_", "-") for k in (*options.builder_args(), "friction", "contact")}
-OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("revs", "samples_per_rev", "rtol", "atol")}
+OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("joint", "revs", "samples_per_rev", "rtol", "atol")}
 
 
 @app.command()

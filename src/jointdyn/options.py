@@ -109,7 +109,7 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
 
     names = option_names or {}
     if joint not in joints():
-        raise ValueError(f"joint = {joint!r}: unknown; valid: {', '.join(joints())}")
+        raise ValueError(f"{names.get('joint', 'joint')} = {joint!r}: unknown; valid: {', '.join(joints())}")
     args = builder_args()
     for k in given:
         if k not in args and k not in ("friction", "contact"):
@@ -137,7 +137,7 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
             names.get("asperity_height", "asperity_height"),
             kw["asperity_height"],
             "m",
-            f"< clearance = {clearance}",
+            f"< clearance = {clearance:.6g}",
         )
     if "friction" in given:
         mu = check_value("friction", given["friction"], "-", names.get("friction"))

@@ -124,7 +124,7 @@ def _worker_init(parent: int) -> None:
         os._exit(1)
 
 
-def _connect(scheduler: str, timeout: float = 10.0):
+def _connect(scheduler: str, timeout: float = 8.0):
     """A Dask client, or one ValueError line within ``timeout`` [s]."""
     try:
         from distributed import Client

@@ -170,7 +170,7 @@ def load_sweep(path) -> SweepSpec:
 def _check_param(base: dict, name: str, where: str = "sweep parameter"):
     if "file" in base:
         return  # dotted model-file paths are checked by the model-file loader
-    valid = ("model", "revs", *model_args(), *run_args())
+    valid = tuple(dict.fromkeys(("model", *model_args(), *run_args())))
     if name not in valid:
         raise ValueError(f"{where} {name!r} is not a slider-crank argument; valid: {list(valid)}")
 
