@@ -153,7 +153,7 @@ def figures(res, title: str) -> dict:
     return figs
 
 
-def write_all(od, res, cols: dict, summ: dict, title: str, digits: int = 10) -> None:
+def write_all(od, res, cols: dict, summ: dict, title: str, digits: int = 17) -> None:
     """results.nc, timeseries.csv, summary.json and the figures into the claimed
     :class:`~jointdyn.rundir.OutputDir` ``od`` (each atomically; a signal between files stops
     the writing with :class:`~jointdyn.errors.Interrupted`)."""

@@ -23,6 +23,7 @@ import os
 import shutil
 import socket
 import sys
+import time
 from pathlib import Path
 
 from . import atomic
@@ -34,6 +35,52 @@ OWN_NAMES = {
     "run": ("results.nc", "timeseries.csv", "summary.json", "model.toml", "*.png", "*.gif", "*.mp4"),
     "sweep": ("cases", "sweep.nc", "spec.json", "*.png"),
 }
+
+
+#: lock file descriptors held by this process (forked workers close their inherited copies)
+HELD: set[int] = set()
+#: how long a lock whose recorded owner is dead may still be held by its dying children [s]
+ORPHAN_WAIT = 5.0
+
+
+def _flock(fd: int) -> bool:
+    """Take the exclusive lock; if it is held but its recorded owner process is dead (its
+    workers are being killed with it), wait up to ``ORPHAN_WAIT`` for the release."""
+    deadline = None
+    while True:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            return True
+        except BlockingIOError:
+            pass
+        if deadline is None:
+            words = os.pread(fd, 512, 0).decode("utf-8", "replace").split()
+            pid = int(words[1]) if len(words) > 1 and words[0] == "pid" and words[1].isdigit() else None
+            if pid is None or _alive(pid):
+                return False
+            deadline = time.monotonic() + ORPHAN_WAIT
+        if time.monotonic() > deadline:
+            return False
+        time.sleep(0.05)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def close_inherited() -> None:
+    """In a forked worker: close the lock descriptors inherited from the parent, so the lock
+    ends with the parent."""
+    for fd in list(HELD):
+        with contextlib.suppress(OSError):
+            os.close(fd)
+    HELD.clear()
 
 
 class OutputError(ValueError):
@@ -126,9 +173,7 @@ class OutputDir:
             raise OutputError(
                 f"{self.option} {self.path}: cannot create a lock file ({err.strerror})"
             ) from None
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
+        if not _flock(fd):
             holder = os.pread(fd, 512, 0).decode("utf-8", "replace").strip() or "unknown process"
             os.close(fd)
             raise OutputError(
@@ -138,6 +183,7 @@ class OutputDir:
         os.ftruncate(fd, 0)
         os.pwrite(fd, f"pid {os.getpid()} on {socket.gethostname()} since {_now()}\n".encode(), 0)
         self._fd = fd
+        HELD.add(fd)
 
     def _clear(self, overwrite: bool, resume: bool) -> None:
         entries = _entries(self.path)
@@ -202,6 +248,7 @@ class OutputDir:
 
     def release(self) -> None:
         if self._fd is not None:
+            HELD.discard(self._fd)
             with contextlib.suppress(OSError):
                 fcntl.flock(self._fd, fcntl.LOCK_UN)
                 os.close(self._fd)

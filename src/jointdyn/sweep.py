@@ -111,6 +111,9 @@ def _worker_init(parent: int) -> None:
     (Linux ``PR_SET_PDEATHSIG``), so a killed sweep leaves no orphans."""
     import signal
 
+    from .rundir import close_inherited
+
+    close_inherited()
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     try:
