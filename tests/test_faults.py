@@ -123,6 +123,19 @@ def test_sigterm_while_writing_leaves_no_corrupt_file(tmp_path):
     assert not [f for f in out.iterdir() if atomic.is_temp(f)]
 
 
+def test_failed_run_writes_its_partial_results(tmp_path):
+    """A failed integration (here: the step budget) writes what it computed, status partial,
+    exit code 1 and one line (once: "kept in .results" and nothing written)."""
+    out = tmp_path / "f"
+    ex = EXAMPLES / "slider_crank_ott.toml"
+    r = runner.invoke(app, ["run", str(ex), "--set", "simulation.max_steps=200", "--out", str(out)])
+    assert r.exit_code == 1 and "maximum number of steps" in r.output, r.output
+    m = complete_files(out)
+    assert m["status"] == "partial" and "maximum number of steps" in m["reason"]
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == "partial" and 2 <= summary["samples"] < 2881  # 2881: the file's n_out
+
+
 # -- ownership ------------------------------------------------------------------------------------
 def test_second_writer_is_refused_and_rerun_needs_overwrite(tmp_path):
     out = tmp_path / "run"

@@ -1,7 +1,8 @@
 """Ctrl-C (SIGINT) and SIGTERM as a flag, checked where Python runs, never an exception raised
 at an arbitrary point (which inside compiled code crashed the interpreter).
 
-``with catching(): ...`` installs flag-setting handlers in the main thread and restores the
+Where the flag is checked bounds the latency [T142]. ``with catching(): ...`` installs
+flag-setting handlers in the main thread and restores the
 previous ones on exit; :func:`check` raises :class:`~jointdyn.errors.Interrupted` once a signal
 was received. Exit codes follow the shell convention 128 + signal number (130, 143).
 """

@@ -144,7 +144,7 @@ def run(
     from .options import check_memory
 
     check_memory(system, config.n_out)
-    n_chunks = chunks if chunks is not None else max(1, min(config.n_out - 1, 64))
+    n_chunks = chunks if chunks is not None else max(1, min(config.n_out - 1, 64))  # [T142]
 
     def on_progress(f: float) -> None:
         interrupts.check()
@@ -189,11 +189,11 @@ def _write_partial(out, err: SimulationError, status: str, headline, title, file
     reason = str(err)
     try:
         if res is not None and len(res.t) >= 2:
+            status = "partial" if status == "failed" else status  # something was computed
             res.meta["status"] = status
             head, units = headline(res) if headline else ({}, {})
             summ = outputs.summary(res, status=status) | {"reason": reason}
             _write(out, res, _columns(res, head, units), summ, title + f" ({status})", files)
-            status = "partial" if status == "failed" else status
     except Exception as werr:  # the first error is the one to report
         reason += f"; writing the partial results failed too: {werr}"
     finally:
@@ -229,7 +229,7 @@ def run_slider_crank(
         cfg,
         out,
         progress=progress,
-        chunks=max(1, int(math.ceil(revs * 8))),
+        chunks=max(1, int(math.ceil(revs * 8))),  # 8 per revolution [T142]
         headline=_slider_crank_headline,
         extra_summary=lambda res, cols: summarize(res, cols, revs),
         title=f"slider-crank, {joint} piston pin",
