@@ -328,6 +328,23 @@ def test_registry_tables_cover_every_entry():
     assert set(CONSTRAINTS) and set(FORCE_ELEMENTS)  # covered by tests/data/bad_models (test_config)
 
 
+@pytest.mark.parametrize("name", sorted(options.PLAUSIBLE))
+def test_implausible_values_warn_with_their_bound(name):
+    """Above the stated plausibility bound [T140] a PhysicsWarning names value, unit and bound;
+    below it nothing is said; beyond the range an error."""
+    from jointdyn.errors import PhysicsWarning
+
+    bound, _ = options.PLAUSIBLE[name]
+    unit = options.builder_args().get(name, (0.0, "-"))[1]
+    with pytest.warns(PhysicsWarning, match=f"{name} = .*{unit}.*> {bound:g}"):
+        options.check_value(name, 1.5 * bound, unit)
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        options.check_value(name, 0.5 * bound, unit)
+
+
 def test_sweep_file_faults(tmp_path):
     f = tmp_path / "s.toml"
     for text, needle in (

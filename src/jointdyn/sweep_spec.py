@@ -230,7 +230,9 @@ def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
                     extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
                     import json
 
-                    load_model(merged["file"], [f"{k}={json.dumps(v)}" for k, v in extra.items()])
+                    # values and names checked here; assembly once, in the case's run
+                    overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
+                    load_model(merged["file"], overrides, assemble=False)
                 else:
                     slider_crank_call(merged, joints)
             except ValueError as err:

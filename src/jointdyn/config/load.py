@@ -376,15 +376,16 @@ def _read(path) -> tuple[dict, str]:
         raise ModelError(f"{path}: tables or arrays nested too deeply to be a model file") from None
 
 
-def load_model(path, overrides=()) -> tuple[Model, SimConfig]:
+def load_model(path, overrides=(), assemble: bool = True) -> tuple[Model, SimConfig]:
     """Read a TOML model file (plus dotted ``key=value`` overrides) into (Model, SimConfig).
 
     Raises :class:`ModelError` with one line naming the file, line, dotted key, unit and the
-    allowed range or valid keys. The model is assembled once to check that it can be.
+    allowed range or valid keys. With ``assemble`` the model is assembled once to check that
+    it can be (a sweep's up-front check skips it: the case's run assembles it).
     """
     doc, text = _read(path)
     doc = apply_overrides(doc, overrides)
-    return build(doc, str(path), text, _overridden(overrides))
+    return build(doc, str(path), text, _overridden(overrides), assemble)
 
 
 def load_system(path, overrides=()):
