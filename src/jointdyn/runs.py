@@ -17,16 +17,8 @@ from .errors import Interrupted, SimulationError
 from .models import slider_crank as sc
 from .simulate import SimConfig, simulate
 
-#: headline columns of a slider-crank run and their units
-SLIDER_CRANK_UNITS = {
-    "crank_angle": "rad",
-    "crank_moment": "N·m",
-    "ex_over_c": "-",
-    "ey_over_c": "-",
-    "h_min": "m",
-    "joint_force": "N",
-    "contact_force": "N",
-}
+#: units of the slider-crank's derived headline columns (element outputs take the element's own)
+SLIDER_CRANK_UNITS = {"crank_angle": "rad", "crank_moment": "N·m", "ex_over_c": "-", "ey_over_c": "-"}
 JOINT_ELEMENT = sc.PIN  # the joint under study
 
 
@@ -202,7 +194,11 @@ def _write_partial(out, err: SimulationError, status: str, headline, title, file
 
 def _slider_crank_headline(res):
     el = JOINT_ELEMENT if JOINT_ELEMENT in res.system.element_names else None
-    return slider_crank_table(res, el), SLIDER_CRANK_UNITS
+    units = dict(SLIDER_CRANK_UNITS)
+    if el is not None:  # h_min, contact_force: the element's declared units; |F| in those of Fx
+        outs = type(res.system.elements[res.system.element_names.index(el)]).OUTPUTS
+        units |= {"h_min": outs["h_min"], "contact_force": outs["contact_force"], "joint_force": outs["Fx"]}
+    return slider_crank_table(res, el), units
 
 
 def run_slider_crank(
