@@ -305,6 +305,38 @@ def _registry_rows():
     return rows
 
 
+def _example_text(family: str, name: str) -> str:
+    """A two-body model file holding the registry entry's own ``example()`` as ``x``."""
+    from jointdyn.model import Model
+
+    m = Model("example")
+    for b, x in (("a", 0.0), ("b", 0.2)):
+        m.add_body(b, 1.0, 0.01, position=(x, 0.0), points={"A": (0.0, 0.0), "B": (0.0, 0.0)})
+    m.add("x", (FORCE_ELEMENTS if family == "elements" else CONSTRAINTS)[name].example())
+    return dumps(m, SimConfig(t_end=1e-3, n_out=11))
+
+
+def _example_rows():
+    """(case, family, type, field) for every numeric field of every force element and
+    constraint, set to NaN in a file built from the entry's ``example()``."""
+    return [
+        (f"{fam}-{name}-{f}", fam, name, f)
+        for fam, reg in (("elements", FORCE_ELEMENTS), ("joints", CONSTRAINTS))
+        for name, cls in reg.items()
+        for f in _numeric_fields(cls)
+    ]
+
+
+@pytest.mark.parametrize("case, family, name, field", _example_rows(), ids=[r[0] for r in _example_rows()])
+def test_bad_element_and_joint_values_name_their_key(tmp_path, case, family, name, field):
+    f = tmp_path / "m.toml"
+    f.write_text(_example_text(family, name))
+    load_model(f, assemble=False)  # the example itself is a valid file
+    with pytest.raises(ModelError) as err:
+        load_model(f, [f"{family}.x.{field}=nan"], assemble=False)
+    assert f"{family}.x.{field}" in str(err.value) and "\n" not in str(err.value)
+
+
 @pytest.mark.parametrize("case, override, key", _registry_rows(), ids=[r[0] for r in _registry_rows()])
 def test_bad_model_file_values_name_their_key(tmp_path, case, override, key):
     f = tmp_path / "m.toml"
@@ -325,7 +357,10 @@ def test_registry_tables_cover_every_entry():
         assert any(c.startswith(f"{name}-") for c in cases)
     for name in SOLVERS:
         assert f"{name}-rtol" in cases
-    assert set(CONSTRAINTS) and set(FORCE_ELEMENTS)  # covered by tests/data/bad_models (test_config)
+    for fam, reg in (("elements", FORCE_ELEMENTS), ("joints", CONSTRAINTS)):
+        for name, cls in reg.items():
+            if _numeric_fields(cls):
+                assert any(r[1] == fam and r[2] == name for r in _example_rows())
 
 
 @pytest.mark.parametrize("name", sorted(options.PLAUSIBLE))
