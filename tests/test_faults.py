@@ -180,6 +180,24 @@ def test_foreign_resume_is_refused_and_changes_nothing(tmp_path):
     assert snapshot(out) == before
 
 
+def test_interrupted_sweep_records_status_and_resumes(tmp_path):
+    spec, out = tmp_path / "a.toml", tmp_path / "s"
+    long = SWEEP.replace("revs = 0.1", "revs = 2.0").replace('"perfect"', '"alshaer2005"')
+    spec.write_text(long.format([500.0 + i for i in range(4)]))  # under a second per case
+    p = start(["sweep", spec, "--out", out, "--workers", 2])
+    wait_for(lambda: len(list((out / "cases").glob("case_*.json"))) >= 1, what="a finished case")
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130, err
+    one_line_error(err)
+    m = complete_files(out)
+    assert m["status"] == "interrupted" and "--resume" in m["reason"]
+    done = {f.name for f in (out / "cases").glob("case_*.json")}
+    ds = run_sweep(load_sweep(spec), out, resume=True, workers=2)
+    assert len(ds["speed"]) == 4 and (ds["error"] == "").all() and len(done) < 4
+    assert complete_files(out)["status"] == "complete"
+
+
 def _free_port() -> int:
     with socket.socket() as s:
         s.bind(("127.0.0.1", 0))
