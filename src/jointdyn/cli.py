@@ -119,6 +119,15 @@ class _progress:
         self._prog.update(self._ids[task], completed=completed)
 
 
+_RA = options.run_args()
+
+
+def _arg_help(name: str, text: str) -> str:
+    """Help of a slider-crank builder argument: its unit and default from the builder."""
+    default, unit = options.builder_args()[name]
+    return f"{text} [{unit}] (default {default:.6g})"
+
+
 _JOINT_HELP = "piston-pin joint kind: " + ", ".join(options.joints())
 
 
@@ -137,20 +146,26 @@ OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("joint", "revs", "sampl
 def run(
     model: str = typer.Argument(..., help="shipped model name (slider-crank) or a model file FILE.toml"),
     joint: str = typer.Option(None, help=_JOINT_HELP + " (default perfect)"),
-    revs: float = typer.Option(None, help="crank revolutions to simulate [rev] (default 4)"),
-    samples_per_rev: int = typer.Option(None, help="output samples per crank revolution [-] (default 720)"),
+    revs: float = typer.Option(None, help=f"crank revolutions to simulate [rev] (default {_RA['revs']:g})"),
+    samples_per_rev: int = typer.Option(
+        None, help=f"output samples per crank revolution [-] (default {_RA['samples_per_rev']})"
+    ),
     out: Path = typer.Option(Path("out/run"), help="output directory (must be empty or a previous run's)"),
     overwrite: bool = typer.Option(False, help="replace jointdyn's files from a previous run in --out"),
     solver: str = typer.Option(None, help=_solver_help()),
-    rtol: float = typer.Option(None, help="relative tolerance [-] (default 1e-8)"),
-    atol: float = typer.Option(None, help="absolute tolerance [SI of each state] (default 1e-10)"),
-    clearance: float = typer.Option(None, help="radial clearance c of an imperfect joint [m] (default 5e-4)"),
-    viscosity: float = typer.Option(None, help="lubricant dynamic viscosity [Pa·s] (default 0.4)"),
-    length: float = typer.Option(None, help="bearing length [m] (default 0.04)"),
+    rtol: float = typer.Option(None, help=f"relative tolerance [-] (default {_RA['rtol']:g})"),
+    atol: float = typer.Option(None, help=f"absolute tolerance [SI of each state] (default {_RA['atol']:g})"),
+    clearance: float = typer.Option(
+        None, help=_arg_help("clearance", "radial clearance c of an imperfect joint")
+    ),
+    viscosity: float = typer.Option(None, help=_arg_help("viscosity", "lubricant dynamic viscosity")),
+    length: float = typer.Option(None, help=_arg_help("length", "bearing length")),
     friction: float = typer.Option(None, help="Ambrósio friction coefficient in contact [-] (default 0)"),
     contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact"),
     asperity_height: float = typer.Option(None, help="with --contact: contact starts at h_min < this [m]"),
-    restitution: float = typer.Option(None, help="dry joint: coefficient of restitution [-] (default 0.9)"),
+    restitution: float = typer.Option(
+        None, help=_arg_help("restitution", "dry joint: coefficient of restitution")
+    ),
     set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
 ):
     """Simulate a shipped mechanism or a model file; write results.nc, timeseries.csv,
