@@ -154,6 +154,8 @@ class OutputDir:
     # -- claiming ---------------------------------------------------------------------------
     def claim(self, overwrite: bool = False, resume: bool = False) -> OutputDir:
         check_path(self.path, self.option)
+        if self.path.is_dir() and not (overwrite or resume):
+            self._clear(False, False)  # refuse a non-empty directory before leaving a lock in it
         try:
             self.path.mkdir(parents=True, exist_ok=True)
         except OSError as err:
