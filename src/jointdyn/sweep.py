@@ -27,7 +27,6 @@ Dataset (grid parameters as coordinates when the sweep is a pure grid), ``manife
 from __future__ import annotations
 
 import json
-import math
 import os
 import time
 import warnings
@@ -51,17 +50,11 @@ __all__ = [
 ]
 
 
-def _metrics_of(res, summ: dict, element: str | None) -> dict:
-    metrics = {k: summ.get(k, math.nan) for k in METRICS if k in summ}
-    metrics["rhs_evaluations"] = res.stats["rhs_evaluations"]
-    if element is not None:
-        es = summ.get("elements", {}).get(element, {})
-        for k in ("max_xi", "min_h_min", "impacts", "energy_dissipated"):
-            if k in es:
-                metrics.setdefault(k, es[k])
-                if k == "energy_dissipated":
-                    metrics[k] = es[k]
-    return metrics
+def _metrics_of(summ: dict, element: str | None) -> dict:
+    """The sweep's ``METRICS`` of one case: the run's summary, completed by the metrics of the
+    element under study (see :func:`jointdyn.outputs.element_summary`)."""
+    es = summ.get("elements", {}).get(element, {}) if element is not None else {}
+    return {k: summ[k] if k in summ else es[k] for k in METRICS if k in summ or k in es}
 
 
 def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
@@ -93,7 +86,7 @@ def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
                 joint, model_kw, run_kw, revs = slider_crank_call(merged, set(joints()))
                 res, _, summ = runs.run_slider_crank(joint, revs, model_kw=model_kw, **run_kw)
                 element = sc.PIN if sc.PIN in res.system.element_names else None
-        metrics = _metrics_of(res, summ, element)
+        metrics = _metrics_of(summ, element)
         metrics["wall_time_s"] = time.perf_counter() - t0
         if series_path:
             with atomic.replacing(Path(series_path)) as tmp:
