@@ -10,7 +10,9 @@ names its field, which is mapped to the file's key and line.
 from __future__ import annotations
 
 import copy
+import math
 import re
+import statistics
 import tomllib
 from pathlib import Path
 
@@ -241,6 +243,7 @@ def _build(doc, source, text, overridden, assemble):
             model.add_body(name, **vals)
         except ModelError as err:
             raise _field_error(ctx, key, err, sch["body"].keys) from None
+    _check_mass_ratio(ctx, model)
     seen: dict[str, str] = {}
     for family in ("joints", "elements"):
         for name, table in _check_table(ctx, (family,), doc.get(family, {}), "one sub-table each").items():
@@ -273,6 +276,29 @@ def _build(doc, source, text, overridden, assemble):
                 raise ctx.error((seen[m.group(1)], m.group(1)), m.group(2)) from None
             raise ctx.error(("joints",), f"{err}") from None
     return model, system, config
+
+
+#: largest ratio of the mass-matrix diagonal entries (masses [kg], inertias [kg·m²]) [T143]
+MAX_MASS_RATIO = 1e12
+
+
+def _check_mass_ratio(ctx: _Context, model: Model) -> None:
+    """Masses and inertias spanning more than ``MAX_MASS_RATIO`` leave the constraint Schur
+    complement Φ_q M⁻¹ Φ_qᵀ without significant digits [T143]; name the extreme entry."""
+    entries = [(b.mass, ("bodies", n, "mass")) for n, b in model.bodies.items()]
+    entries += [(b.inertia, ("bodies", n, "inertia")) for n, b in model.bodies.items()]
+    (lo, klo), (hi, khi) = min(entries), max(entries)
+    if hi > MAX_MASS_RATIO * lo:
+        mid = statistics.median_low(math.log10(v) for v, _ in entries)  # the typical entry
+        (v, key), (w, other) = (
+            ((hi, khi), (lo, klo)) if math.log10(hi) - mid >= mid - math.log10(lo) else ((lo, klo), (hi, khi))
+        )
+        raise ctx.error(
+            key,
+            f"{v:.3g} vs {'.'.join(other)} = {w:.3g}: masses and inertias [kg, kg·m²] must "
+            f"span at most a factor {MAX_MASS_RATIO:.0e} (double precision then keeps ~4 digits of "
+            "the constraint forces); check the units",
+        )
 
 
 # -- overrides ---------------------------------------------------------------------------------
