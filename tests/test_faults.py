@@ -37,7 +37,7 @@ from jointdyn.sweep import load_sweep, run_sweep
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
-LONG = ["run", "slider-crank", "--joint", "alshaer2005", "--revs", "40"]  # minutes: always interrupted
+LONG = ["run", "slider-crank", "--joint", "alshaer2005", "--revs", "400"]  # minutes: always interrupted
 
 
 def cli(*args) -> list[str]:
