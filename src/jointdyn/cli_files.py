@@ -14,6 +14,7 @@ from rich.table import Table
 
 from . import atomic
 from .cli import _one_line_errors, app, console
+from .forces.film_models import FILM_MODELS
 
 PLOTS = ("moment", "orbit", "film", "contact", "energy")
 
@@ -151,14 +152,22 @@ def animate_cmd(
     console.print(f"wrote {escape(str(out))}")
 
 
-@app.command("film-force")
+def _film_force_help() -> str:
+    from .filmtable import units
+
+    cols = ", ".join(f"{c} [{u}]" for c, u in units().items())
+    return (
+        "Film forces for a table of bearing states: appends Fr, Ft, Fx, Fy [N] (force on the "
+        f"journal). Columns (SI, global rates), from film_forces(): {cols}."
+    )
+
+
+@app.command("film-force", help=_film_force_help())
 def film_force_cmd(
-    states: Path = typer.Argument(..., help="CSV with a header naming the state columns (see below)"),
-    model: str = typer.Option("alshaer2005", help="film model name (see `jointdyn list`)"),
+    states: Path = typer.Argument(..., help="CSV with a header naming the state columns listed above"),
+    model: str = typer.Option("alshaer2005", help="film model: " + ", ".join(FILM_MODELS)),
     out: Path = typer.Option(None, help="output CSV (default: stdout)"),
 ):
-    """Film forces for a table of bearing states: appends Fr, Ft, Fx, Fy [N] (force on the
-    journal). Columns (SI, global rates): see `jointdyn list`."""
     from .filmtable import film_force_table
 
     with _one_line_errors():
