@@ -9,6 +9,7 @@ SIGTERM — never a traceback.
 from __future__ import annotations
 
 import contextlib
+import os
 import warnings
 from pathlib import Path
 
@@ -77,6 +78,13 @@ def _one_line_errors(out: Path | None = None):
         raise _fail(f"{err}{where}", 1) from None
     except (ValueError, OSError) as err:  # ModelError, FieldError, OutputError are ValueErrors
         raise _fail(str(err) if str(err) else type(err).__name__) from None
+    except Exception as err:  # a bug: still one line, the traceback with JOINTDYN_DEBUG=1
+        if os.environ.get("JOINTDYN_DEBUG"):
+            raise
+        first = (str(err).splitlines() or [""])[0]
+        raise _fail(
+            f"internal error {type(err).__name__}: {first} (JOINTDYN_DEBUG=1 shows the traceback)", 1
+        ) from None
     finally:
         warnings.showwarning = old
 
