@@ -13,6 +13,7 @@ import os
 import warnings
 from pathlib import Path
 
+import click
 import typer
 from rich.console import Console
 from rich.markup import escape
@@ -78,6 +79,8 @@ def _one_line_errors(out: Path | None = None):
         raise _fail(f"{err}{where}", 1) from None
     except (ValueError, OSError) as err:  # ModelError, FieldError, OutputError are ValueErrors
         raise _fail(str(err) if str(err) else type(err).__name__) from None
+    except (typer.Exit, typer.Abort, click.ClickException):
+        raise
     except Exception as err:  # a bug: still one line, the traceback with JOINTDYN_DEBUG=1
         if os.environ.get("JOINTDYN_DEBUG"):
             raise
