@@ -22,9 +22,12 @@ INTRO = '''# Model files (TOML)
 
 A model file describes one planar mechanism and how to integrate it. It is read by
 `jointdyn.config.load_model(path, overrides=()) -> (Model, SimConfig)` and written by
-`save_model(model, config, path)`; `run_model_file(path, out_dir, overrides)` simulates it and
-writes `results.nc`, `timeseries.csv` (time, coordinates, velocities, multipliers, units in the
-header) and `model.toml` (the resolved model). Shipped examples: `examples/*.toml`.
+`save_model(model, config, path)`; `jointdyn run FILE.toml --out DIR` (or
+`jointdyn.runs.run_model_file(path, out_dir, overrides)`) simulates it and writes the same files
+as every run: `results.nc`, `timeseries.csv` (time, the coordinates, velocities, multipliers and
+every element's outputs, units in the headers), `summary.json`, figures, `model.toml` (the
+resolved model) and `manifest.json` (see [the command line](user-guide/cli.md)). Shipped
+examples: `examples/*.toml`.
 
 **SI units everywhere** (m, kg, s, rad, N); the unit of every key is in the tables below. There
 is no unit conversion in a file: write 523.5987755982989 rad/s, not "5000 rpm".

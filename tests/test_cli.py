@@ -14,6 +14,11 @@ from jointdyn.forces.film_models import film_forces
 runner = CliRunner()
 
 
+def name(header: str) -> str:
+    """A CSV column's name without its unit: ``crank_moment [N·m]`` -> ``crank_moment``."""
+    return header.split(" [", 1)[0]
+
+
 def test_run_perfect_writes_files(tmp_path):
     out = tmp_path / "run"
     r = runner.invoke(app, ["run", "slider-crank", "--joint", "perfect", "--revs", "1", "--out", str(out)])
@@ -21,8 +26,9 @@ def test_run_perfect_writes_files(tmp_path):
     for f in ("results.nc", "timeseries.csv", "summary.json", "moment.png"):
         assert (out / f).exists()
     with open(out / "timeseries.csv") as f:
-        rows = list(csv.DictReader(f))
-    assert list(rows[0])[:3] == ["t", "crank_angle", "crank_moment"]
+        rows = [{name(k): v for k, v in r.items()} for r in csv.DictReader(f)]
+    # one output contract: time first (the slider-crank's former "t"), units in the headers
+    assert list(rows[0])[:3] == ["time", "crank_angle", "crank_moment"]
     M = np.array([float(r["crank_moment"]) for r in rows])
     assert abs(M.max() - 138.62) < 0.01  # benchmark peak [T160]
     summary = json.loads((out / "summary.json").read_text())
@@ -52,7 +58,7 @@ def test_run_lubricated_has_eccentricity_columns(tmp_path):
         ],
     )
     assert r.exit_code == 0, r.output
-    header = (out / "timeseries.csv").read_text().splitlines()[0].split(",")
+    header = [name(h) for h in (out / "timeseries.csv").read_text().splitlines()[0].split(",")]
     assert {"ex_over_c", "ey_over_c", "h_min"} <= set(header)
 
 
@@ -102,10 +108,12 @@ def test_plot_and_animate_a_saved_run(tmp_path):
     out = tmp_path / "lub"
     r = runner.invoke(app, ["run", "slider-crank", "--joint", "dry", "--revs", "0.25", "--out", str(out)])
     assert r.exit_code == 0, r.output
+    own = (out / "moment.png").read_bytes()
     for what in ("moment", "orbit", "film", "contact", "energy"):
         r = runner.invoke(app, ["plot", str(out), "--what", what])
         assert r.exit_code == 0, r.output
-        assert (out / f"{what}.png").stat().st_size > 5000
+        assert (out / f"plot_{what}.png").stat().st_size > 5000
+    assert (out / "moment.png").read_bytes() == own  # the run's own figure is never overwritten
     r = runner.invoke(app, ["plot", str(out), "--what", "stress"])
     assert r.exit_code == 2 and "valid" in r.output
     gif = tmp_path / "a.gif"

@@ -373,7 +373,8 @@ def test_run_model_file_writes_results_and_timeseries(tmp_path):
         rows = list(csv.reader(f))
     header, data = rows[0], np.array(rows[1:], dtype=float)
     assert header[0] == "time [s]" and "rocker.phi [rad]" in header and "lambda.drive[0] [N·m]" in header
-    assert data.shape == (21, 1 + 2 * res.system.n + res.lam.shape[1])
+    n_outputs = sum(len(type(e).OUTPUTS) for e in res.system.elements)  # every element's outputs
+    assert data.shape == (21, 1 + 2 * res.system.n + res.lam.shape[1] + n_outputs)
     np.testing.assert_array_equal(data[:, 0], res.t)
     np.testing.assert_array_equal(
         data[:, header.index("lambda.drive[0] [N·m]")], res.multipliers("drive")[:, 0]

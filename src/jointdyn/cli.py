@@ -1,121 +1,281 @@
-"""Command-line interface (thin shell over the library)."""
+"""Command-line interface (thin shell over the library).
+
+Every command checks all its inputs before any work, writes its outputs atomically, and ends
+a problem with one line on stderr and a non-zero exit code: 2 bad input or output path, 1 a
+failed simulation (partial results written with their status), 130 Ctrl-C (SIGINT), 143
+SIGTERM — never a traceback.
+"""
 
 from __future__ import annotations
 
+import contextlib
+import os
+import warnings
 from pathlib import Path
 
+import click
 import typer
 from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
+from . import options
+
 app = typer.Typer(
     help="jointdyn: planar mechanisms with ideal, clearance and lubricated joints.",
     no_args_is_help=True,
     add_completion=False,
+    rich_markup_mode=None,
+    pretty_exceptions_enable=False,
 )
-console = Console()
+console = Console(soft_wrap=True)
 
 
-def _progress(description: str):
-    from rich.progress import BarColumn, Progress, TimeElapsedColumn, TimeRemainingColumn
+def _version(value: bool) -> None:
+    if value:
+        from .rundir import version
 
-    return Progress(
-        "[progress.description]{task.description}",
-        BarColumn(),
-        "[progress.percentage]{task.percentage:>3.0f}%",
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        console=console,
-        transient=False,
-    )
+        typer.echo(f"jointdyn {version()}")
+        raise typer.Exit()
 
 
-def _joint_kw(joint, clearance, viscosity, length, friction, contact, asperity_height) -> dict:
-    """Builder arguments of the shipped slider-crank from CLI options (SI)."""
-    from .forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
-    from .forces.friction_laws import Ambrosio
-    from .models import slider_crank as sc
+@app.callback()
+def _main(
+    version: bool = typer.Option(
+        False, "--version", callback=_version, is_eager=True, help="show the version"
+    ),
+) -> None:
+    """jointdyn: planar mechanisms with ideal, clearance and lubricated joints."""
 
-    if joint == "perfect":
-        return {}
-    kw = {"clearance": clearance}
-    if friction > 0:
-        kw["friction"] = Ambrosio(coefficient=friction)
-    if joint != "dry":
-        kw.update(viscosity=viscosity, length=length, asperity_height=asperity_height)
-        if contact:
-            rb = sc.JOURNAL_RADIUS + clearance
-            K = journal_bearing_stiffness(rb, sc.JOURNAL_RADIUS, sc.YOUNG, sc.POISSON, sc.YOUNG, sc.POISSON)
-            kw["contact"] = LankaraniNikravesh(stiffness=K, exponent=1.5, restitution=sc.RESTITUTION)
-    return kw
+
+def _fail(msg: str, code: int = 2) -> typer.Exit:
+    typer.echo(f"error: {' '.join(str(msg).split())}", err=True)
+    return typer.Exit(code)
+
+
+@contextlib.contextmanager
+def _one_line_errors(out: Path | None = None):
+    """Map every expected failure to one stderr line and its exit code; warnings to one line."""
+    from . import interrupts
+    from .errors import Interrupted, SimulationError
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        typer.echo(f"warning: {' '.join(str(message).split())}", err=True)
+
+    where = f"; what was computed is in {out} (see manifest.json)" if out is not None else ""
+    old = warnings.showwarning
+    warnings.showwarning = show
+    try:
+        with interrupts.catching():
+            yield
+    except Interrupted as err:
+        t = f" at t = {err.t:.6g} s" if err.t == err.t else ""
+        typer.echo(f"interrupted by {err.signal}{t}{where}", err=True)
+        raise typer.Exit(interrupts.EXIT_CODES.get(err.signal, 130)) from None
+    except KeyboardInterrupt:
+        typer.echo(f"interrupted by SIGINT{where}", err=True)
+        raise typer.Exit(130) from None
+    except SimulationError as err:
+        raise _fail(f"{err}{where}", 1) from None
+    except (ValueError, OSError) as err:  # ModelError, FieldError, OutputError are ValueErrors
+        raise _fail(str(err) if str(err) else type(err).__name__) from None
+    except (typer.Exit, typer.Abort, click.ClickException):
+        raise
+    except Exception as err:  # a bug: still one line, the traceback with JOINTDYN_DEBUG=1
+        if os.environ.get("JOINTDYN_DEBUG"):
+            raise
+        first = (str(err).splitlines() or [""])[0]
+        raise _fail(
+            f"internal error {type(err).__name__}: {first} (JOINTDYN_DEBUG=1 shows the traceback)", 1
+        ) from None
+    finally:
+        warnings.showwarning = old
+
+
+class _progress:
+    """A rich progress display that appears at the first update (so that a run refused by
+    its checks prints nothing but its one error line)."""
+
+    def __init__(self, description: str):
+        self.description = description
+        self._prog = None
+        self._tasks: list = []
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        if self._prog is not None:
+            self._prog.stop()
+
+    def add_task(self, name: str, total: float) -> int:
+        self._tasks.append((name, total))
+        return len(self._tasks) - 1
+
+    def update(self, task: int, completed: float) -> None:
+        if self._prog is None:
+            from rich.progress import BarColumn, Progress, TimeElapsedColumn, TimeRemainingColumn
+
+            self._prog = Progress(
+                "[progress.description]{task.description}",
+                BarColumn(),
+                "[progress.percentage]{task.percentage:>3.0f}%",
+                TimeElapsedColumn(),
+                TimeRemainingColumn(),
+                console=console,
+                transient=False,
+            )
+            self._ids = [self._prog.add_task(escape(n), total=t) for n, t in self._tasks]
+            self._prog.start()
+        self._prog.update(self._ids[task], completed=completed)
+
+
+_RA = options.run_args()
+
+
+def _arg_help(name: str, text: str) -> str:
+    """Help of a slider-crank builder argument: its unit and default from the builder."""
+    default, unit = options.builder_args()[name]
+    return f"{text} [{unit}] (default {default:.6g})"
+
+
+_JOINT_HELP = "piston-pin joint kind: " + ", ".join(options.joints())
+
+
+def _solver_help() -> str:
+    from .integrators import SOLVERS
+
+    return "integrator: auto (rodas4 for a lubricated joint, else dopri5), " + ", ".join(SOLVERS)
+
+
+#: CLI spelling of the slider-crank builder arguments
+OPTION_NAMES = {k: "--" + k.replace("_", "-") for k in (*options.builder_args(), "friction", "contact")}
+OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("joint", "revs", "samples_per_rev", "rtol", "atol")}
 
 
 @app.command()
 def run(
     model: str = typer.Argument(..., help="shipped model name (slider-crank) or a model file FILE.toml"),
-    joint: str = typer.Option("perfect", help="piston-pin joint kind"),
-    revs: float = typer.Option(4.0, help="crank revolutions to simulate [-]"),
-    out: Path = typer.Option(Path("out/run"), help="output directory"),
-    solver: str = typer.Option(None, help="integrator (default per joint kind); see `jointdyn list`"),
-    rtol: float = typer.Option(1e-8, help="relative tolerance [-]"),
-    atol: float = typer.Option(1e-10, help="absolute tolerance [SI]"),
-    clearance: float = typer.Option(0.5e-3, help="radial clearance c of an imperfect joint [m]"),
-    viscosity: float = typer.Option(0.4, help="lubricant dynamic viscosity [Pa·s]"),
-    length: float = typer.Option(0.04, help="bearing length [m]"),
-    friction: float = typer.Option(
-        0.0, help="Ambrósio friction coefficient of contact (0 = frictionless) [-]"
+    joint: str = typer.Option(None, help=_JOINT_HELP + " (default perfect)"),
+    revs: float = typer.Option(None, help=f"crank revolutions to simulate [rev] (default {_RA['revs']:g})"),
+    samples_per_rev: int = typer.Option(
+        None, help=f"output samples per crank revolution [-] (default {_RA['samples_per_rev']})"
     ),
-    contact: bool = typer.Option(
-        False, help="lubricated joint: add Lankarani–Nikravesh asperity contact (mixed regime)"
+    out: Path = typer.Option(Path("out/run"), help="output directory (must be empty or a previous run's)"),
+    overwrite: bool = typer.Option(False, help="replace jointdyn's files from a previous run in --out"),
+    solver: str = typer.Option(None, help=_solver_help()),
+    rtol: float = typer.Option(None, help=f"relative tolerance [-] (default {_RA['rtol']:g})"),
+    atol: float = typer.Option(None, help=f"absolute tolerance [SI of each state] (default {_RA['atol']:g})"),
+    clearance: float = typer.Option(
+        None, help=_arg_help("clearance", "radial clearance c of an imperfect joint")
     ),
-    asperity_height: float = typer.Option(0.0, help="mixed regime: contact starts at h_min < this [m]"),
+    viscosity: float = typer.Option(None, help=_arg_help("viscosity", "lubricant dynamic viscosity")),
+    length: float = typer.Option(None, help=_arg_help("length", "bearing length")),
+    friction: float = typer.Option(None, help="Ambrósio friction coefficient in contact [-] (default 0)"),
+    contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact"),
+    asperity_height: float = typer.Option(None, help="with --contact: contact starts at h_min < this [m]"),
+    restitution: float = typer.Option(
+        None, help=_arg_help("restitution", "dry joint: coefficient of restitution")
+    ),
     set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
 ):
-    """Simulate a shipped mechanism or a model file; write results.nc, timeseries.csv and more."""
-    from .errors import ModelError, SimulationError
-    from .runs import run_slider_crank
+    """Simulate a shipped mechanism or a model file; write results.nc, timeseries.csv,
+    summary.json, figures and manifest.json."""
+    from .rundir import OutputDir
 
-    if model.endswith(".toml"):
-        from .config import run_model_file
+    sc_opts = {
+        "joint": joint,
+        "revs": revs,
+        "samples_per_rev": samples_per_rev,
+        "solver": solver,
+        "rtol": rtol,
+        "atol": atol,
+        "clearance": clearance,
+        "viscosity": viscosity,
+        "length": length,
+        "friction": friction,
+        "asperity_height": asperity_height,
+        "restitution": restitution,
+    }
+    given = {k: v for k, v in sc_opts.items() if v is not None} | ({"contact": True} if contact else {})
+    is_file = model.endswith(".toml") or Path(model).is_file()
+    od = None
+    with _one_line_errors(out):
+        if is_file:
+            if given:
+                names = ", ".join(OPTION_NAMES.get(k, "--" + k) for k in given)
+                raise ValueError(
+                    f"{names}: apply to the shipped slider-crank; for a model file use --set a.b=VALUE"
+                )
+            from .runs import prepare_model_file, run_model_file
 
-        try:
-            res = run_model_file(model, out, overrides=set_)
-        except (ModelError, ValueError, SimulationError) as err:
-            console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-            raise typer.Exit(2) from None
-        console.print(
-            f"{res.system.name}: {len(res.t)} samples, {res.stats['rhs_evaluations']} RHS evaluations, "
-            f"{res.wall_time:.3f} s; wrote {out}/results.nc, timeseries.csv, model.toml"
-        )
-        return
-    if set_:
-        raise typer.BadParameter("--set applies to model files only", param_hint="--set")
-    if model != "slider-crank":
-        raise typer.BadParameter(f"unknown model {model!r}; valid: ['slider-crank']", param_hint="MODEL")
-    try:
-        with _progress("run") as prog:
-            task = prog.add_task(f"slider-crank ({joint})", total=1.0)
-            res, cols, summary = run_slider_crank(
-                joint,
-                revs,
-                out=out,
-                progress=lambda f: prog.update(task, completed=f),
-                model_kw=_joint_kw(joint, clearance, viscosity, length, friction, contact, asperity_height),
-                solver=solver,
-                rtol=rtol,
-                atol=atol,
+            prepared = prepare_model_file(model, set_)
+            options.check_memory(prepared[1], prepared[2].n_out, "simulation.n_out")
+            od = OutputDir(out, "run", prepared[3]).claim(overwrite)
+            with _progress("run") as prog:
+                task = prog.add_task(prepared[0].name, total=1.0)
+                res = run_model_file(
+                    model, od, set_, prepared=prepared, progress=lambda f: prog.update(task, completed=f)
+                )
+            files = ", ".join([*od.files, "manifest.json"])
+            console.print(
+                f"{escape(res.system.name)}: {len(res.t)} samples, {res.stats['rhs_evaluations']} RHS "
+                f"evaluations, {res.wall_time:.3f} s; wrote {escape(str(out))}/: {files}"
             )
-    except (ValueError, SimulationError) as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2) from None
+            return
+        if set_:
+            raise ValueError("--set applies to model files only")
+        if model != "slider-crank":
+            raise ValueError(
+                f"MODEL {model!r}: unknown shipped model and not a file; valid: slider-crank or FILE.toml"
+            )
+        _run_slider_crank(given, out, overwrite)
+
+
+def _run_slider_crank(given: dict, out: Path, overwrite: bool) -> None:
+    from .integrators import SOLVERS
+    from .models.slider_crank import slider_crank
+    from .rundir import OutputDir
+    from .runs import run_slider_crank, slider_crank_config
+
+    joint = given.pop("joint", "perfect")
+    ra = options.run_args()
+    run_kw = {k: given.pop(k) for k in ("solver", "rtol", "atol", "samples_per_rev") if k in given}
+    revs = given.pop("revs", ra["revs"])
+    model_kw = options.slider_crank_args(joint, given, OPTION_NAMES)
+    options.check_run(
+        revs, run_kw.get("samples_per_rev", ra["samples_per_rev"]), **_tols(run_kw), names=OPTION_NAMES
+    )
+    if run_kw.get("solver", "auto") not in ("auto", *SOLVERS):
+        raise ValueError(f"--solver {run_kw['solver']!r}: unknown; valid: auto, {', '.join(SOLVERS)}")
+    cfg = slider_crank_config(joint, revs, **run_kw)
+    options.check_memory(slider_crank(joint, **model_kw), cfg.n_out, "--revs × --samples-per-rev")
+    spec = {"model": "slider-crank", "joint": joint, "revs": revs, **run_kw} | {
+        k: given[k] for k in given if k not in run_kw
+    }
+    od = OutputDir(out, "run", spec).claim(overwrite)
+    with _progress("run") as prog:
+        task = prog.add_task(f"slider-crank ({joint})", total=1.0)
+        _, _, summary = run_slider_crank(
+            joint,
+            revs,
+            out=od,
+            progress=lambda f: prog.update(task, completed=f),
+            model_kw=model_kw,
+            **run_kw,
+        )
     tab = Table(title=f"slider-crank, {joint} piston pin ({revs:g} rev)")
     tab.add_column("quantity")
     tab.add_column("value", justify="right")
     for k, v in summary.items():
-        tab.add_row(k, f"{v:.6g}" if isinstance(v, float) else str(v))
+        if not isinstance(v, dict):
+            tab.add_row(k, f"{v:.6g}" if isinstance(v, float) else escape(str(v)))
     console.print(tab)
-    console.print(f"wrote {out}/results.nc, timeseries.csv, summary.json, moment.png")
+    console.print(f"wrote {escape(str(out))}/: {', '.join(od.files)}, manifest.json")
+
+
+def _tols(run_kw: dict) -> dict:
+    return {k: run_kw[k] for k in ("rtol", "atol") if k in run_kw}
 
 
 @app.command()
@@ -126,13 +286,14 @@ def reproduce(
     beyond: bool = typer.Option(True, help="also run the beyond-the-paper cases"),
 ):
     """Run the paper's comparison (perfect, dry, Ott, π-film) and write figures + report.html."""
-    from .errors import SimulationError
     from .reproduce import BEYOND_CASES, PAPER_CASES, reproduce_alshaer2005, summary_markdown
+    from .rundir import check_path
 
-    if paper != "alshaer2005":
-        raise typer.BadParameter(f"unknown paper {paper!r}; valid: ['alshaer2005']", param_hint="PAPER")
-    cases = PAPER_CASES + (BEYOND_CASES if beyond else ())
-    try:
+    with _one_line_errors():
+        if paper != "alshaer2005":
+            raise ValueError(f"PAPER {paper!r}: unknown; valid: alshaer2005")
+        check_path(out)
+        cases = PAPER_CASES + (BEYOND_CASES if beyond else ())
         with _progress("reproduce") as prog:
             tasks = {c.name: prog.add_task(c.name, total=1.0) for c in cases}
             runs = reproduce_alshaer2005(
@@ -141,11 +302,8 @@ def reproduce(
                 beyond=beyond,
                 progress=lambda name, f: prog.update(tasks[name], completed=f),
             )
-    except (ValueError, SimulationError) as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2) from None
-    console.print(summary_markdown(runs))
-    console.print(f"wrote {out}/report.html, summary.csv, <case>.csv and the figures")
+    console.print(escape(summary_markdown(runs)))
+    console.print(f"wrote {escape(str(out))}/report.html, summary.csv, <case>.csv and the figures")
 
 
 @app.command()
@@ -153,17 +311,26 @@ def sweep(
     spec: Path = typer.Argument(
         ..., help="sweep file (TOML): [base], [grid]/[zip]/[sample], [output], [dask]"
     ),
-    out: Path = typer.Option(Path("out/sweep"), help="output directory"),
-    resume: bool = typer.Option(False, help="keep finished cases, run only the missing ones"),
+    out: Path = typer.Option(
+        Path("out/sweep"), help="output directory (empty, or this sweep's with --resume)"
+    ),
+    resume: bool = typer.Option(
+        False, help="keep finished cases of the same sweep, run only the missing ones"
+    ),
+    overwrite: bool = typer.Option(False, help="replace jointdyn's files from a previous sweep in --out"),
     scheduler: str = typer.Option(
         None, help="Dask scheduler address tcp://HOST:PORT (default: local processes)"
     ),
-    workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
+    workers: int = typer.Option(None, help="local worker processes [-] (default: all cores)"),
 ):
-    """Run a parameter study; writes DIR/cases/*.json per case and DIR/sweep.nc."""
+    """Run a parameter study; writes DIR/cases/*.json per case, DIR/sweep.nc and DIR/manifest.json."""
     from .sweep import load_sweep, run_sweep
 
-    try:
+    with _one_line_errors(out):
+        if resume and overwrite:
+            raise ValueError("--resume and --overwrite exclude each other")
+        if workers is not None and workers < 1:
+            raise ValueError(f"--workers = {workers} [-]: must be an integer >= 1")
         sp = load_sweep(spec)
         n = len(sp.cases())
         with _progress("sweep") as prog:
@@ -174,199 +341,19 @@ def sweep(
                 resume=resume,
                 scheduler=scheduler,
                 workers=workers,
+                overwrite=overwrite,
                 progress=lambda done, total: prog.update(task, completed=done),
             )
-    except ValueError as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2) from None
     failed = int((ds["error"] != "").sum())
-    console.print(f"wrote {out}/sweep.nc ({n} cases, {failed} failed)")
+    console.print(f"wrote {escape(str(out))}/sweep.nc ({n} cases, {failed} failed)")
 
 
-@app.command("plot-sweep")
-def plot_sweep(
-    directory: Path = typer.Argument(..., help="a sweep output directory"),
-    metric: str = typer.Option("peak_moment", help="metric to draw"),
-    out: Path = typer.Option(None, help="PNG file (default DIR/<metric>.png)"),
-):
-    """Heat map (two grid parameters) or line plot (one) of a sweep metric."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from . import plots
-    from .results import load
-
-    ds = load(directory / "sweep.nc")
-    if metric not in ds:
-        console.print(
-            f"[red]error:[/red] metric {metric!r} not in the sweep; have {sorted(ds.data_vars)}",
-            soft_wrap=True,
-        )
-        raise typer.Exit(2) from None
-    fig, ax = plt.subplots(figsize=(6, 4.5))
-    plots.sweep_metric(ds[metric], ax=ax)
-    fig.tight_layout()
-    target = out or directory / f"{metric}.png"
-    fig.savefig(target, dpi=120)
-    console.print(f"wrote {target}")
-
-
-@app.command("animate")
-def animate_cmd(
-    directory: Path = typer.Argument(..., help="a run directory with results.nc"),
-    out: Path = typer.Option(Path("anim.gif"), help="anim.gif (pillow) or anim.mp4 (needs ffmpeg)"),
-    frames: int = typer.Option(120, help="number of frames"),
-):
-    """Animate a saved run: the mechanism moving, journal orbits (e/c) in insets."""
-    from .animate import animate
-
-    f = directory / "results.nc" if directory.is_dir() else directory
-    if not f.exists():
-        console.print(f"[red]error:[/red] {escape(str(f))} does not exist", soft_wrap=True)
-        raise typer.Exit(2) from None
-    console.print(f"wrote {animate(f, out, frames=frames)}")
-
-
-@app.command("plot")
-def plot_cmd(
-    directory: Path = typer.Argument(..., help="a run directory with results.nc"),
-    what: str = typer.Option("moment", help="moment | orbit | film | contact | energy"),
-    out: Path = typer.Option(None, help="PNG (default DIR/<what>.png)"),
-):
-    """Plot a saved run: driving moment, journal orbit, film thickness, contact force, energy."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    from . import plots
-    from .results import load
-
-    ds = load(directory / "results.nc")
-    choices = ("moment", "orbit", "film", "contact", "energy")
-    if what not in choices:
-        console.print(f"[red]error:[/red] --what {what!r}: valid: {list(choices)}", soft_wrap=True)
-        raise typer.Exit(2) from None
-    fig, ax = plt.subplots(figsize=(7, 4.5))
-    try:
-        plots.saved_run(ds, what, ax=ax)
-    except ValueError as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2) from None
-    fig.tight_layout()
-    target = out or directory / f"{what}.png"
-    fig.savefig(target, dpi=120)
-    console.print(f"wrote {target}")
-
-
-FILM_COLUMNS = (
-    "xi",
-    "xi_dot",
-    "gamma",
-    "gamma_dot",
-    "omega_journal",
-    "omega_bearing",
-    "viscosity",
-    "length",
-    "radius",
-    "clearance",
-)
-
-
-@app.command("film-force")
-def film_force_cmd(
-    states: Path = typer.Argument(
-        ..., help="CSV with columns " + ", ".join(FILM_COLUMNS) + " (SI, global rates)"
-    ),
-    model: str = typer.Option("alshaer2005", help="film model name (see `jointdyn list`)"),
-    out: Path = typer.Option(None, help="output CSV (default: stdout)"),
-):
-    """Film forces for a table of bearing states: appends Fr, Ft, Fx, Fy [N] (force on the journal)."""
-    import csv
-    import sys
-
-    import numpy as np
-
-    from .forces.film_models import FILM_MODELS, film_forces
-
-    try:
-        if model not in FILM_MODELS:
-            raise ValueError(f"--model {model!r} is unknown; valid: {sorted(FILM_MODELS)}")
-        with open(states, newline="") as f:
-            rows = list(csv.DictReader(f))
-        if not rows:
-            raise ValueError(f"{states}: no data rows")
-        missing = [c for c in FILM_COLUMNS if c not in rows[0]]
-        if missing:
-            raise ValueError(f"{states}: missing column(s) {missing}; required: {list(FILM_COLUMNS)}")
-        data = {}
-        for c in FILM_COLUMNS:
-            vals = []
-            for i, r in enumerate(rows):
-                try:
-                    vals.append(float(r[c]))
-                except ValueError:
-                    raise ValueError(
-                        f"{states}: row {i + 1}, column {c!r}: {r[c]!r} is not a number"
-                    ) from None
-            data[c] = np.array(vals)
-        for c, v in data.items():
-            bad = np.flatnonzero(~np.isfinite(v))
-            if bad.size:
-                raise ValueError(
-                    f"{states}: row {bad[0] + 1}, column {c!r}: non-finite value {float(v[bad[0]])!r}"
-                )
-        F = film_forces(model, *(data[c] for c in FILM_COLUMNS))
-    except (ValueError, OSError) as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2) from None
-    fh = open(out, "w", newline="") if out else sys.stdout
-    w = csv.writer(fh)
-    w.writerow(list(rows[0].keys()) + ["Fr", "Ft", "Fx", "Fy"])
-    for i, r in enumerate(rows):
-        w.writerow(list(r.values()) + [f"{F[k][i]:.10g}" for k in ("Fr", "Ft", "Fx", "Fy")])
-    if out:
-        fh.close()
-
-
+from . import cli_files  # noqa: E402  (registers plot, plot-sweep, animate, film-force, list)
 from .bearing.cli import bearing_table_cmd  # noqa: E402
 
 app.command("bearing-table")(bearing_table_cmd)
 
-
-@app.command("list")
-def list_registries():
-    """Show the registries: constraints, force elements, film/contact/friction laws, solvers, models."""
-    from .forces.contact_laws import CONTACT_LAWS
-    from .forces.elements import FORCE_ELEMENTS
-    from .forces.film_models import FILM_MODELS
-    from .forces.friction_laws import FRICTION_LAWS
-    from .integrators import SOLVERS
-    from .joints.constraints import CONSTRAINTS
-    from .models.slider_crank import JOINTS
-
-    for title, reg in (
-        ("constraints", CONSTRAINTS),
-        ("force elements", FORCE_ELEMENTS),
-        ("film models", FILM_MODELS),
-        ("contact laws", CONTACT_LAWS),
-        ("friction laws", FRICTION_LAWS),
-    ):
-        tab = Table(title=title)
-        tab.add_column("name")
-        tab.add_column("description")
-        for k, v in reg.items():
-            tab.add_row(k, escape((v.__doc__ or "").strip().splitlines()[0]))
-        console.print(tab)
-    tab = Table(title="solvers")
-    tab.add_column("name")
-    tab.add_column("description")
-    for k, (_, _, d) in SOLVERS.items():
-        tab.add_row(k, d)
-    console.print(tab)
-    console.print(f"models: slider-crank (joints: {', '.join(JOINTS)})")
+__all__ = ["app", "cli_files", "main"]
 
 
 def main():  # pragma: no cover

@@ -97,10 +97,13 @@ def check_codes(registry: Mapping[str, type], family: str) -> None:
 
 
 def check_finite(owner: str, name: str, v, unit: str, rule: str, ok) -> None:
-    """Raise ``ValueError("owner.name = v [unit]: must be rule")`` unless v is a finite number
+    """Raise :class:`~jointdyn.checks.FieldError` (a ``ValueError``: "owner.name = v [unit]: must
+    be rule") unless v is a finite number
     satisfying ``ok(v)``."""
     if not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and ok(v)):
-        raise ValueError(f"{owner}.{name} = {v!r} [{unit}]: must be {rule}")
+        from .checks import FieldError  # a ValueError carrying field/unit/rule (no text parsing)
+
+        raise FieldError(name, v, unit, rule, owner)
 
 
 TYPE, BODY_I, BODY_J = Layout(HEADER).slots(*HEADER)

@@ -1,20 +1,25 @@
-"""Ready-made runs of the shipped slider-crank: simulate, derive, write files.
-
-Used by the CLI (``jointdyn run``/``reproduce``), the benchmarks and the tests.
+"""One path for every run: :func:`run` compiles a model once, simulates it, derives the output
+contract (:mod:`jointdyn.outputs`) and writes it into a claimed directory. The CLI
+(``jointdyn run``, shipped model or model file), sweeps and the reproduction use it;
+:func:`run_slider_crank` adds the slider-crank's headline columns and summary.
 """
 
 from __future__ import annotations
 
-import csv
-import json
 import math
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
-from . import post
+from . import interrupts, outputs, post
+from .errors import Interrupted, SimulationError
 from .models import slider_crank as sc
 from .simulate import SimConfig, simulate
+
+#: units of the slider-crank's derived headline columns (element outputs take the element's own)
+SLIDER_CRANK_UNITS = {"crank_angle": "rad", "crank_moment": "N·m", "ex_over_c": "-", "ey_over_c": "-"}
+JOINT_ELEMENT = sc.PIN  # the joint under study
 
 
 def slider_crank_config(
@@ -28,8 +33,13 @@ def slider_crank_config(
 ) -> SimConfig:
     """Integration settings for ``revs`` crank revolutions at ``speed`` [rad/s]."""
     if not (math.isfinite(revs) and revs > 0):
-        raise ValueError(f"revs = {revs!r} [revolutions]: must be > 0")
-    t_end = revs * 2 * math.pi / speed
+        raise ValueError(f"revs = {revs!r} [revolutions]: must be finite and > 0")
+    if revs * samples_per_rev < 1:
+        raise ValueError(
+            f"revs = {revs!r} [revolutions]: must be >= 1/samples_per_rev = {1 / samples_per_rev:.3g} "
+            "(at least one output interval)"
+        )
+    t_end = revs * 2 * math.pi / abs(speed)
     return SimConfig(
         t_end=t_end,
         n_out=int(round(revs * samples_per_rev)) + 1,
@@ -42,7 +52,8 @@ def slider_crank_config(
 def slider_crank_table(res, joint_element: str | None = None) -> dict[str, np.ndarray]:
     """Time series of a slider-crank run: t [s], crank_angle [rad, unwrapped], crank_moment
     [N·m] (the drive's moment on the crank, CCW positive), and for an imperfect piston pin
-    ex_over_c, ey_over_c [-], h_min [m], joint_force [N] (magnitude on the journal)."""
+    ex_over_c, ey_over_c [-], h_min [m], joint_force [N] (magnitude on the journal),
+    contact_force [N]."""
     cols = {
         "t": res.t,
         "crank_angle": post.body_angle(res, "crank"),
@@ -76,6 +87,7 @@ def summarize(res, cols: dict, revs: float) -> dict:
     out.update({f"{k}_moment": v for k, v in post.stats(m[last]).items()})
     out.update({f"{k}_moment_all": v for k, v in post.stats(m).items()})
     if "ex_over_c" in cols:
+        el = JOINT_ELEMENT
         xi = np.hypot(cols["ex_over_c"], cols["ey_over_c"])
         out["max_xi"] = float(xi.max())
         out["min_h_min"] = float(cols["h_min"].min())
@@ -84,60 +96,173 @@ def summarize(res, cols: dict, revs: float) -> dict:
         out["contact_time_s"] = float(np.sum(dt * 0.5 * (in_contact[1:] + in_contact[:-1])))
         out["contact_fraction"] = out["contact_time_s"] / float(res.t[-1] - res.t[0])
         out["max_contact_force"] = float(cols["contact_force"].max())
-        out["max_penetration"] = post.max_penetration(res, "piston_pin")  # over accepted steps
-        out["impacts"] = post.impacts(res, "piston_pin")
+        out["max_penetration"] = post.max_penetration(res, el)  # over accepted steps
+        out["impacts"] = post.impacts(res, el)
     return out
 
 
-def write_run(out: Path, res, cols: dict, summary: dict, title: str) -> None:
-    """results.nc, timeseries.csv, summary.json and moment.png into ``out``."""
-    import matplotlib
+def _columns(res, headline: dict[str, np.ndarray], units: dict[str, str]) -> dict[str, np.ndarray]:
+    """Headline columns (with units) followed by every system column (time not repeated)."""
+    cols = {outputs.header("time", "s"): res.t}
+    cols.update({outputs.header(k, units[k]): v for k, v in headline.items() if k != "t"})
+    cols.update({k: v for k, v in outputs.system_columns(res).items() if k not in cols})
+    return cols
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
 
-    from . import plots
+def run(
+    model,
+    config: SimConfig,
+    out=None,
+    *,
+    progress: Callable[[float], None] | None = None,
+    chunks: int | None = None,
+    headline: Callable | None = None,
+    extra_summary: Callable | None = None,
+    title: str = "",
+    files: dict[str, str] | None = None,
+    meta: dict | None = None,
+):
+    """Compile ``model`` (once), simulate it and, with ``out`` (a claimed
+    :class:`~jointdyn.rundir.OutputDir`), write the output contract and the manifest.
 
-    out.mkdir(parents=True, exist_ok=True)
-    res.save(out / "results.nc")
-    with open(out / "timeseries.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(list(cols))
-        for row in zip(*cols.values()):
-            w.writerow([f"{v:.10g}" for v in row])
-    (out / "summary.json").write_text(json.dumps(summary, indent=2))
-    fig, ax = plt.subplots(figsize=(7, 4))
-    plots.moment_vs_angle(cols["crank_angle"], cols["crank_moment"], ax=ax)
-    ax.set_title(title)
-    fig.tight_layout()
-    fig.savefig(out / "moment.png", dpi=120)
-    plt.close(fig)
-    if "ex_over_c" in cols:
-        fig, ax = plt.subplots(figsize=(5, 5))
-        plots.journal_orbit(cols["ex_over_c"], cols["ey_over_c"], ax=ax)
-        ax.set_title(title)
-        fig.tight_layout()
-        fig.savefig(out / "orbit.png", dpi=120)
-        plt.close(fig)
+    ``headline(res) -> ({name: array}, {name: unit})`` puts model-specific columns first;
+    ``extra_summary(res, headline_columns) -> dict`` adds model-specific metrics; ``files``
+    are extra text files (name -> content, e.g. the resolved ``model.toml``); ``meta`` goes
+    into ``Results.meta`` (provenance saved with the results). Returns
+    ``(results, headline columns, summary)``. On a failure or interruption the partial results
+    (if any) are written with their status and the error is re-raised.
+    """
+    system = model.compile() if hasattr(model, "compile") else model
+    from .options import check_memory
+
+    check_memory(system, config.n_out)
+    n_chunks = chunks if chunks is not None else max(1, min(config.n_out - 1, 64))  # [T142]
+
+    def on_progress(f: float) -> None:
+        interrupts.check()
+        if progress is not None:
+            progress(f)
+
+    try:
+        res = simulate(system, config, progress=on_progress, chunks=n_chunks)
+    except SimulationError as err:
+        if err.results is not None:
+            err.results.meta.update(meta or {})
+        if out is not None:
+            status = "interrupted" if isinstance(err, Interrupted) else "failed"
+            _write_partial(out, err, status, headline, title, files)
+        raise
+    res.meta.update(meta or {})
+    head, units = headline(res) if headline else ({}, {})
+    summ = outputs.summary(res)
+    if extra_summary is not None:
+        summ.update(extra_summary(res, head))
+    if out is not None:
+        try:
+            _write(out, res, _columns(res, head, units), summ, title, files)
+        except Interrupted as err:
+            out.finish("interrupted", f"{err} while writing the results")
+            raise
+        out.finish("complete")
+    return res, head, summ
+
+
+def _write(out, res, cols, summ, title, files) -> None:
+    for name, text in (files or {}).items():
+        with out.write(name) as tmp:
+            tmp.write_text(text, encoding="utf-8")
+    outputs.write_all(out, res, cols, summ, title)
+
+
+def _write_partial(out, err: SimulationError, status: str, headline, title, files) -> None:
+    """Write what a failed or interrupted run computed, then the manifest with its status."""
+    interrupts.acknowledge()  # a further signal stops this writing, not the first one
+    res = err.results
+    reason = str(err)
+    try:
+        if res is not None and len(res.t) >= 2:
+            status = "partial" if status == "failed" else status  # something was computed
+            res.meta["status"] = status
+            head, units = headline(res) if headline else ({}, {})
+            summ = outputs.summary(res, status=status) | {"reason": reason}
+            _write(out, res, _columns(res, head, units), summ, title + f" ({status})", files)
+    except Exception as werr:  # the first error is the one to report
+        reason += f"; writing the partial results failed too: {werr}"
+    finally:
+        out.finish(status, reason, t_reached=getattr(err, "t", None))
+
+
+def _slider_crank_headline(res):
+    el = JOINT_ELEMENT if JOINT_ELEMENT in res.system.element_names else None
+    units = dict(SLIDER_CRANK_UNITS)
+    if el is not None:  # h_min, contact_force: the element's declared units; |F| in those of Fx
+        outs = type(res.system.elements[res.system.element_names.index(el)]).OUTPUTS
+        units |= {"h_min": outs["h_min"], "contact_force": outs["contact_force"], "joint_force": outs["Fx"]}
+    return slider_crank_table(res, el), units
 
 
 def run_slider_crank(
     joint: str = "perfect",
     revs: float = 4.0,
-    out: Path | None = None,
+    out=None,
     progress=None,
     model_kw: dict | None = None,
     **cfg_kw,
 ):
-    """Simulate the benchmark slider-crank; optionally write the run files. Returns
-    (results, columns, summary)."""
+    """Simulate the benchmark slider-crank; optionally write the run files. ``out`` is a
+    directory path (claimed here, see :mod:`jointdyn.rundir`) or a claimed
+    :class:`~jointdyn.rundir.OutputDir`. Returns (results, columns, summary)."""
+    from .rundir import OutputDir
+
     model = sc.slider_crank(joint, **(model_kw or {}))
-    system = model.compile()
     cfg = slider_crank_config(joint, revs, **cfg_kw)
-    res = simulate(system, cfg, progress=progress, chunks=max(1, int(math.ceil(revs * 8))))
-    el = "piston_pin" if "piston_pin" in system.element_names else None
-    cols = slider_crank_table(res, el)
-    summary = summarize(res, cols, revs)
-    if out is not None:
-        write_run(Path(out), res, cols, summary, f"slider-crank, {joint} piston pin")
-    return res, cols, summary
+    if out is not None and not isinstance(out, OutputDir):
+        spec = {"model": "slider-crank", "joint": joint, "revs": revs, **(model_kw or {}), **cfg_kw}
+        spec = {k: v if isinstance(v, (int, float, str)) else repr(v) for k, v in spec.items()}
+        out = OutputDir(Path(out), "run", spec).claim(overwrite=True)
+    return run(
+        model,
+        cfg,
+        out,
+        progress=progress,
+        chunks=max(1, int(math.ceil(revs * 8))),  # 8 per revolution [T142]
+        headline=_slider_crank_headline,
+        extra_summary=lambda res, cols: summarize(res, cols, revs),
+        title=f"slider-crank, {joint} piston pin",
+    )
+
+
+def prepare_model_file(path, overrides=()):
+    """Load and compile a model file once: ``(model, system, config, spec)``; ``spec`` is what
+    the run directory records (file, overrides, the resolved model text)."""
+    from .config import dumps, load_system
+
+    model, system, config = load_system(path, overrides)
+    spec = {"model_file": str(path), "overrides": list(overrides), "model": dumps(model, config)}
+    return model, system, config, spec
+
+
+def run_model_file(path, out_dir, overrides=(), overwrite: bool = True, progress=None, prepared=None):
+    """Load a model file, simulate it and write the output contract plus the resolved model
+    (``model.toml``, overrides applied) into ``out_dir`` (a path, claimed here, or a claimed
+    :class:`~jointdyn.rundir.OutputDir`). Returns the Results.
+
+    On a :class:`~jointdyn.errors.SimulationError` the partial results are written first, then
+    the error is re-raised.
+    """
+    from .config import dumps
+    from .rundir import OutputDir
+
+    model, system, config, spec = prepared or prepare_model_file(path, overrides)
+    header = f"resolved from {path}" + (f" with {list(overrides)}" if overrides else "")
+    od = out_dir if isinstance(out_dir, OutputDir) else OutputDir(Path(out_dir), "run", spec).claim(overwrite)
+    res, _, _ = run(
+        system,
+        config,
+        od,
+        progress=progress,
+        title=model.name,
+        files={"model.toml": dumps(model, config, header)},
+        meta={"model_file": str(path), "overrides": list(overrides)},
+    )
+    return res

@@ -16,177 +16,81 @@ A sweep file (TOML)::
     [dask]
     scheduler = "tcp://127.0.0.1:8786"   # optional; same as --scheduler
 
-Every case is written atomically to ``DIR/cases/case_NNNNN.json`` (metrics, or the error of a
-failed case) as soon as it finishes; ``--resume`` skips the cases already there, so a killed
-sweep recomputes at most the cases that were in flight. ``DIR/sweep.nc`` gathers all cases in
-one xarray Dataset (grid parameters as coordinates when the sweep is a pure grid).
+Every case is checked before any work (:func:`validate`). A sweep directory is owned
+(:mod:`jointdyn.rundir`): ``spec.json`` records the spec that made it, ``--resume`` with another
+spec is refused, one writer at a time. Every case is written atomically to
+``DIR/cases/case_NNNNN.json`` (metrics, or the error of a failed case) as soon as it finishes;
+``--resume`` skips the cases already there. ``DIR/sweep.nc`` gathers all cases in one xarray
+Dataset (grid parameters as coordinates when the sweep is a pure grid), ``manifest.json`` last.
 """
 
 from __future__ import annotations
 
-import itertools
 import json
-import math
 import os
 import time
-import tomllib
-from dataclasses import dataclass, field
+import warnings
 from pathlib import Path
 
 import numpy as np
 
-METRICS = (
-    "peak_moment",
-    "min_moment",
-    "rms_moment",
-    "max_xi",
-    "min_h_min",
-    "impacts",
-    "energy_dissipated",
-    "wall_time_s",
-    "rhs_evaluations",
-)
-MODEL_ARGS = (
-    "joint",
-    "speed",
-    "gravity",
-    "clearance",
-    "viscosity",
-    "length",
-    "restitution",
-    "asperity_height",
-)
-RUN_ARGS = ("solver", "rtol", "atol", "samples_per_rev")
+from . import atomic, interrupts
+from .errors import Interrupted
+from .sweep_spec import METRICS, SweepSpec, latin_hypercube, load_sweep, validate
+
+__all__ = [
+    "METRICS",
+    "SweepSpec",
+    "latin_hypercube",
+    "load_sweep",
+    "validate",
+    "run_case",
+    "run_sweep",
+    "gather",
+]
 
 
-@dataclass(frozen=True)
-class SweepSpec:
-    """A parameter study (see the module docstring for the file layout)."""
-
-    base: dict
-    grid: dict = field(default_factory=dict)
-    zipped: dict = field(default_factory=dict)
-    sample: dict = field(default_factory=dict)
-    keep_series: bool = False
-    scheduler: str | None = None
-
-    def cases(self) -> list[dict]:
-        """The list of parameter dicts, one per case, in a fixed order."""
-        parts = []
-        if self.grid:
-            keys = list(self.grid)
-            parts.append([dict(zip(keys, vals)) for vals in itertools.product(*self.grid.values())])
-        if self.zipped:
-            lens = {len(v) for v in self.zipped.values()}
-            if len(lens) != 1:
-                raise ValueError(f"[zip]: all lists must have the same length; got {sorted(lens)}")
-            keys = list(self.zipped)
-            parts.append([dict(zip(keys, vals)) for vals in zip(*self.zipped.values())])
-        if self.sample:
-            parts.append(latin_hypercube(self.sample))
-        cases = [{}]
-        for p in parts:
-            cases = [{**a, **b} for a in cases for b in p]
-        return cases
-
-
-def latin_hypercube(sample: dict) -> list[dict]:
-    """``sample = {n, seed, ranges = {name: [lo, hi]}}`` -> n cases (scipy.stats.qmc)."""
-    from scipy.stats import qmc
-
-    unknown = set(sample) - {"n", "seed", "ranges"}
-    if unknown:
-        raise ValueError(f"[sample]: unknown key(s) {sorted(unknown)}; valid: ['n', 'ranges', 'seed']")
-    ranges = sample["ranges"]
-    names = list(ranges)
-    lo = np.array([ranges[k][0] for k in names], float)
-    hi = np.array([ranges[k][1] for k in names], float)
-    u = qmc.LatinHypercube(d=len(names), seed=sample.get("seed", 0)).random(int(sample["n"]))
-    x = qmc.scale(u, lo, hi)
-    return [{k: float(v) for k, v in zip(names, row)} for row in x]
-
-
-def load_sweep(path) -> SweepSpec:
-    """Read a sweep file; unknown tables/keys are errors naming the valid ones."""
-    path = Path(path)
-    try:
-        doc = tomllib.loads(path.read_text())
-    except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"{path}: {err}") from None
-    valid = {"base", "grid", "zip", "sample", "output", "dask"}
-    if set(doc) - valid:
-        raise ValueError(f"{path}: unknown table(s) {sorted(set(doc) - valid)}; valid: {sorted(valid)}")
-    if "base" not in doc:
-        raise ValueError(f"{path}: missing [base] table")
-    out = doc.get("output", {})
-    if set(out) - {"keep_series"}:
-        raise ValueError(
-            f"{path}: [output] unknown key(s) {sorted(set(out) - {'keep_series'})}; valid: ['keep_series']"
-        )
-    base = dict(doc["base"])
-    if "file" in base:
-        base["file"] = str((path.parent / base["file"]).resolve())
-    spec = SweepSpec(
-        base=base,
-        grid=doc.get("grid", {}),
-        zipped=doc.get("zip", {}),
-        sample=doc.get("sample", {}),
-        keep_series=bool(out.get("keep_series", False)),
-        scheduler=doc.get("dask", {}).get("scheduler"),
-    )
-    for name in itertools.chain(spec.grid, spec.zipped, spec.sample.get("ranges", {})):
-        _check_param(base, name)
-    return spec
-
-
-def _check_param(base: dict, name: str):
-    if "file" in base:
-        return  # dotted model-file paths are checked by the model-file loader
-    valid = MODEL_ARGS + RUN_ARGS + ("revs",)
-    if name not in valid:
-        raise ValueError(f"sweep parameter {name!r} is not a slider-crank argument; valid: {list(valid)}")
+def _metrics_of(summ: dict, element: str | None) -> dict:
+    """The sweep's ``METRICS`` of one case: the run's summary, completed by the metrics of the
+    element under study (see :func:`jointdyn.outputs.element_summary`)."""
+    es = summ.get("elements", {}).get(element, {}) if element is not None else {}
+    return {k: summ[k] if k in summ else es[k] for k in METRICS if k in summ or k in es}
 
 
 def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
-    """Run one case (in a worker process); returns its metrics. Never raises: a failure is
-    returned as ``{"error": message}``."""
-    from . import post
-    from .runs import run_slider_crank
+    """Run one case (in a worker process) through :func:`jointdyn.runs.run`; returns its
+    metrics. Never raises: a failure is returned as ``{"error": message}``."""
+    from . import runs
+    from .models import slider_crank as sc
 
     t0 = time.perf_counter()
     try:
         merged = {**base, **params}
-        if "file" in merged:
-            from .config import load_model
-            from .simulate import simulate
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # reported once at validation, not per case
+            if "file" in merged:
+                from .config import load_system
 
-            # every [base] key besides file/model and every swept parameter is a dotted override
-            extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
-            overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
-            model, cfg = load_model(merged["file"], overrides)
-            res = simulate(model.compile(), cfg)
-            metrics = {"rhs_evaluations": res.stats["rhs_evaluations"]}
-        else:
-            if merged.get("model", "slider-crank") != "slider-crank":
-                raise ValueError(f"unknown model {merged.get('model')!r}; valid: ['slider-crank']")
-            model_kw = {k: merged[k] for k in MODEL_ARGS if k in merged and k != "joint"}
-            run_kw = {k: merged[k] for k in RUN_ARGS if k in merged}
-            res, cols, summ = run_slider_crank(
-                merged.get("joint", "perfect"), float(merged.get("revs", 4)), model_kw=model_kw, **run_kw
-            )
-            metrics = {
-                k: summ.get(k, math.nan)
-                for k in ("peak_moment", "min_moment", "rms_moment", "max_xi", "min_h_min", "rhs_evaluations")
-            }
-        names = res.system.element_names
-        if names:  # the joint under study: "piston_pin" in the shipped model, else the first
-            el = "piston_pin" if "piston_pin" in names else names[0]
-            metrics["energy_dissipated"] = post.dissipated_energy(res, el)
-            if "impacts" in type(res.system.elements[names.index(el)]).MEMORY:
-                metrics["impacts"] = post.impacts(res, el)
+                extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
+                overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
+                _, system, cfg = load_system(merged["file"], overrides)
+                res, _, summ = runs.run(system, cfg)
+                names = res.system.element_names
+                element = names[0] if names else None
+            else:
+                from .options import joints
+                from .sweep_spec import slider_crank_call
+
+                # validate() refused arguments that act on no joint of the sweep; the rest that
+                # do not act on this case's joint are dropped here
+                joint, model_kw, run_kw, revs = slider_crank_call(merged, set(joints()))
+                res, _, summ = runs.run_slider_crank(joint, revs, model_kw=model_kw, **run_kw)
+                element = sc.PIN if sc.PIN in res.system.element_names else None
+        metrics = _metrics_of(summ, element)
         metrics["wall_time_s"] = time.perf_counter() - t0
         if series_path:
-            res.save(series_path)
+            with atomic.replacing(Path(series_path)) as tmp:
+                res.save(tmp)
         return {
             k: (float(v) if isinstance(v, (int, float, np.floating, np.integer)) else v)
             for k, v in metrics.items()
@@ -195,10 +99,71 @@ def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
         return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
 
 
-def _write_atomic(path: Path, data: dict):
-    tmp = path.with_suffix(path.suffix + f".tmp{os.getpid()}")
-    tmp.write_text(json.dumps(data))
-    os.replace(tmp, path)
+def _worker_init(parent: int) -> None:
+    """Worker processes ignore Ctrl-C (the parent stops them) and die with their parent
+    (Linux ``PR_SET_PDEATHSIG``), so a killed sweep leaves no orphans."""
+    import signal
+
+    from .rundir import close_inherited
+
+    close_inherited()
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):  # pragma: no cover - not Linux
+        pass
+    if os.getppid() != parent:  # the parent died before prctl took effect
+        os._exit(1)
+
+
+def _connect(scheduler: str, timeout: float = 8.0):
+    """A Dask client, or one ValueError line within ``timeout`` [s]."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise ValueError("--scheduler needs Dask: pip install 'jointdyn[dist]'") from None
+    try:
+        return Client(scheduler, timeout=f"{timeout}s")
+    except (OSError, TimeoutError, ValueError) as err:
+        first = str(err).splitlines()[0] if str(err) else type(err).__name__
+        raise ValueError(f"--scheduler {scheduler}: cannot connect within {timeout:g} s ({first})") from None
+
+
+def _spec_record(spec: SweepSpec, n: int) -> dict:
+    rec = {"base": spec.base, "grid": spec.grid, "zip": spec.zipped, "sample": spec.sample}
+    rec |= {"keep_series": spec.keep_series, "n_cases": n}
+    if "file" in spec.base:  # the model file is part of the spec: an edited file is another sweep
+        rec["file_sha256"] = atomic.sha256(spec.base["file"])
+    return json.loads(json.dumps(rec, default=str))
+
+
+def _check_owner(out: Path, rec: dict, resume: bool) -> None:
+    """A resumed sweep must be the one that made the directory."""
+    if not resume:
+        return
+    cdir = out / "cases"
+    try:
+        old = json.loads((out / "spec.json").read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        if cdir.exists() and any(cdir.iterdir()):
+            raise ValueError(
+                f"--resume {out}: has case files but no spec.json; not a sweep directory"
+            ) from None
+        return
+    except ValueError:
+        raise ValueError(
+            f"--resume {out}: spec.json is unreadable; use --overwrite or another --out"
+        ) from None
+    if old != rec:
+        diff = sorted(k for k in set(old) | set(rec) if old.get(k) != rec.get(k))
+        raise ValueError(
+            f"--resume {out}: the directory was made by a different sweep spec (differs in "
+            f"{', '.join(diff)}); resume with the same file, or use --overwrite or another --out"
+        )
 
 
 def run_sweep(
@@ -208,65 +173,103 @@ def run_sweep(
     scheduler: str | None = None,
     workers: int | None = None,
     progress=None,
+    overwrite: bool = True,
 ):
-    """Run all cases not yet done; write per-case files and ``sweep.nc``. Returns the Dataset."""
-    out = Path(out)
+    """Run all cases not yet done; write per-case files, ``sweep.nc`` and the manifest.
+    Returns the Dataset. ``overwrite`` (the library default; the CLI asks for ``--overwrite``)
+    lets a non-empty sweep directory be replaced when not resuming."""
+    from .rundir import OutputDir, check_path
+
+    out = check_path(out)
+    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+        raise ValueError(f"--workers = {workers!r} [-]: must be an integer >= 1")
+    cases, invalid = validate(spec)
+    rec = _spec_record(spec, len(cases))
+    scheduler = scheduler or spec.scheduler
+    client = _connect(scheduler) if scheduler else None  # before any file is touched
+    try:
+        od = OutputDir(out, "sweep", rec).claim(overwrite=overwrite, resume=resume)
+        try:
+            _check_owner(out, rec, resume)
+        except BaseException:
+            od.release()
+            raise
+        return _run(spec, od, cases, invalid, rec, client, workers, progress)
+    finally:
+        if client is not None:
+            client.close()
+
+
+def _run(spec, od, cases, invalid, rec, client, workers, progress):
+    out = od.path
     cdir = out / "cases"
-    cdir.mkdir(parents=True, exist_ok=True)
-    cases = spec.cases()
-    (out / "spec.json").write_text(
-        json.dumps(
-            {
-                "base": spec.base,
-                "grid": spec.grid,
-                "zip": spec.zipped,
-                "sample": spec.sample,
-                "n_cases": len(cases),
-            },
-            default=str,
-        )
-    )
-    todo = []
-    for i in range(len(cases)):
-        f = cdir / f"case_{i:05d}.json"
-        if resume and f.exists():
-            continue
-        todo.append(i)
-    if not resume:
-        for f in cdir.glob("case_*.json"):
-            f.unlink()
+    cdir.mkdir(exist_ok=True)
+    atomic.write_json(out / "spec.json", rec)
+    todo = [i for i in range(len(cases)) if not (cdir / f"case_{i:05d}.json").exists()]
     sp = (lambda i: str(cdir / f"case_{i:05d}.nc")) if spec.keep_series else (lambda i: None)
     done = len(cases) - len(todo)
-    scheduler = scheduler or spec.scheduler
 
     def record(i, result):
         nonlocal done
-        _write_atomic(cdir / f"case_{i:05d}.json", {"case": i, "params": cases[i], **result})
+        atomic.write_json(cdir / f"case_{i:05d}.json", {"case": i, "params": cases[i], **result})
         done += 1
         if progress:
             progress(done, len(cases))
 
-    if todo and scheduler:
-        from distributed import Client, as_completed
+    for i in [i for i in todo if i in invalid]:  # checked before any work: not run
+        record(i, {"error": invalid[i], "wall_time_s": 0.0})
+    todo = [i for i in todo if i not in invalid]
+    try:
+        with interrupts.catching():
+            if todo and client is not None:
+                from distributed import as_completed
 
-        with Client(scheduler) as client:
-            futs = {client.submit(run_case, spec.base, cases[i], sp(i), pure=False): i for i in todo}
-            for fut in as_completed(futs):
-                record(futs[fut], fut.result())
-    elif todo:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
-
-        with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as ex:
-            futs = {ex.submit(run_case, spec.base, cases[i], sp(i)): i for i in todo}
-            for fut in as_completed(futs):
-                record(futs[fut], fut.result())
-    ds = gather(out, spec, cases)
-    ds.to_netcdf(out / "sweep.nc", engine="h5netcdf")
+                futs = {client.submit(run_case, spec.base, cases[i], sp(i), pure=False): i for i in todo}
+                for fut in as_completed(futs):
+                    record(futs[fut], fut.result())
+                    interrupts.check()
+            elif todo:
+                _local(spec, cases, todo, sp, workers, record)
+            ds = gather(out, spec, cases)
+        with od.write("sweep.nc") as tmp:
+            ds.to_netcdf(tmp, engine="h5netcdf")
+    except Interrupted as err:
+        od.finish("interrupted", f"{err}; {done} of {len(cases)} cases finished (continue with --resume)")
+        raise
+    except BaseException as err:
+        od.finish("failed", f"{type(err).__name__}: {err}")
+        raise
+    for f in sorted(cdir.iterdir()):
+        od.record(f"cases/{f.name}")
+    failed = int((ds["error"] != "").sum())
+    od.finish("complete", f"{failed} of {len(cases)} cases failed" if failed else "", n_cases=len(cases))
     return ds
 
 
+def _local(spec, cases, todo, sp, workers, record) -> None:
+    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+    ex = ProcessPoolExecutor(
+        max_workers=workers or os.cpu_count(), initializer=_worker_init, initargs=(os.getpid(),)
+    )
+    try:
+        pending = {ex.submit(run_case, spec.base, cases[i], sp(i)): i for i in todo}
+        while pending:
+            finished, _ = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
+            for fut in finished:
+                record(pending.pop(fut), fut.result())
+            interrupts.check()
+    except BaseException:
+        for p in list(getattr(ex, "_processes", {}).values()):  # stop the workers now
+            p.kill()
+        ex.shutdown(wait=False, cancel_futures=True)
+        raise
+    ex.shutdown(wait=True)
+
+
 def gather(out: Path, spec: SweepSpec, cases: list[dict]):
-    """Combine the per-case files into one Dataset (dims = grid parameters for pure grids)."""
+    """Combine the per-case files into one Dataset (dims = grid parameters for pure grids;
+    string parameters such as ``joint`` stay strings)."""
     import xarray as xr
 
     rows = [json.loads((out / "cases" / f"case_{i:05d}.json").read_text()) for i in range(len(cases))]
@@ -280,7 +283,12 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
         coords={"case": np.arange(len(cases))},
     )
     for name in sorted({k for c in cases for k in c}):
-        ds.coords[name] = ("case", np.array([c.get(name, np.nan) for c in cases], dtype=float))
+        vals = [c.get(name, np.nan) for c in cases]
+        numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in vals)
+        ds.coords[name] = (
+            "case",
+            np.array(vals, dtype=float) if numeric else np.array([str(v) for v in vals]),
+        )
     if spec.grid and not spec.zipped and not spec.sample:
         keys = list(spec.grid)
         ds = ds.swap_dims(case=keys[0]) if len(keys) == 1 else ds.set_index(case=keys).unstack("case")

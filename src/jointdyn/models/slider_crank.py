@@ -10,6 +10,7 @@ slider (body j = slider)**, so Ω = φ̇_slider + φ̇_rod − 2γ̇ = φ̇_rod 
 from __future__ import annotations
 
 from ..forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
+from ..forces.film_models import FILM_MODELS
 from ..forces.journal import ClearanceJoint, JournalBearing
 from ..joints.constraints import AngleDriver, Revolute, Translational
 from ..model import Model
@@ -30,7 +31,10 @@ VISCOSITY = 0.4  # [Pa·s]
 YOUNG, POISSON = 207e9, 0.3  # [Pa], [-]
 RESTITUTION = 0.9  # [-]
 
-JOINTS = ("perfect", "dry", "ott", "alshaer2005", "short", "finite")
+#: joint kinds of the piston pin: ideal, dry clearance, or a lubricated bearing per film model
+JOINTS = ("perfect", "dry", *FILM_MODELS)
+#: name of the joint under study (the rod–slider pin) in the built model
+PIN = "piston_pin"
 
 
 def slider_crank(
@@ -85,7 +89,7 @@ def slider_crank(
     m.add("crank_pin", Revolute("crank", "A", "rod", "A"))
     m.add("guide", Translational("ground", "O", "slider", "B", axis=(1.0, 0.0), angle=0.0))
     if joint == "perfect":
-        m.add("piston_pin", Revolute("rod", "B", "slider", "B"))
+        m.add(PIN, Revolute("rod", "B", "slider", "B"))
         return m
     if not clearance > 0:
         raise ValueError(f"clearance = {clearance!r} [m]: must be > 0")
@@ -94,12 +98,12 @@ def slider_crank(
         K = journal_bearing_stiffness(rb, JOURNAL_RADIUS, YOUNG, POISSON, YOUNG, POISSON)
         law = LankaraniNikravesh(stiffness=K, exponent=1.5, restitution=restitution)
         m.add(
-            "piston_pin",
+            PIN,
             ClearanceJoint("rod", "B", "slider", "B", rb, JOURNAL_RADIUS, contact=law, friction=friction),
         )
     else:
         m.add(
-            "piston_pin",
+            PIN,
             JournalBearing(
                 "rod",
                 "B",
