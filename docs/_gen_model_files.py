@@ -126,7 +126,9 @@ def _table(schema: C.Schema, extra: list[tuple[str, str, str, str, str]] = ()) -
         out.append("| " + " | ".join(row) + " |")
     for k in schema.keys.values():
         typ = C.type_name(C._validator_annotation(k))
-        if k.name in C.LAW_FIELDS:
+        if k.name in C.NAME_FIELDS and k.name in C.LAW_FIELDS:
+            typ = f"string (a {k.name} model name) or inline table `{{ law = ..., ... }}`"
+        elif k.name in C.LAW_FIELDS:
             typ = f"inline table `{{ law = ..., ... }}` ({k.name} law)"
         doc = (k.doc or FALLBACK.get(k.name, "—")).replace("|", "\\|")
         out.append(f"| `{k.name}` | {typ} | {_default(k)} | {k.unit or '—'} | {doc} |")
@@ -157,8 +159,15 @@ def reference() -> list[str]:
         for name, sch in s[family].items():
             out += [f"#### `law = \"{name}\"` ({sch.cls.__name__})", "", _first_sentence(sch.cls.__doc__), ""]
             out += _table(sch, [("`law`", "string", "**required**", "—", f"`\"{name}\"`")])
-    out += ["### Film models (`film = ...` of `journal_bearing`)", "", "| name | model |", "|---|---|"]
+    out += ["### Film models (`film = ...` of `journal_bearing`)", "",
+            "A name (`film = \"finite\"`, the model with its defaults) or an inline table with the model's own",
+            "keys (`film = { law = \"finite\", cavitation = \"reynolds\" }`).", "",
+            "| name | model |", "|---|---|"]
     out += [f"| `{n}` | {_first_sentence(c.__doc__)} |" for n, c in FILM_MODELS.items()] + [""]
+    for name, sch in s["film"].items():
+        if sch.keys:
+            out += [f"#### `law = \"{name}\"` ({sch.cls.__name__})", ""]
+            out += _table(sch, [("`law`", "string", "**required**", "—", f"`\"{name}\"`")])
     out += ["### `[simulation]` (required)", "", s["simulation"].doc, ""] + _table(s["simulation"])
     out += ["Solvers (`solver = ...`):", "", "| name | description |", "|---|---|"]
     out += [f"| `{n}` | {v[2]} |" for n, v in SOLVERS.items()] + [""]

@@ -12,7 +12,8 @@ from jointdyn.bearing.design import bearing_table, equilibrium
 from jointdyn.bearing.fv import assemble
 from jointdyn.bearing.lcp import residual, solve_lcp
 from jointdyn.bearing.long_short import long_steady, short_steady
-from jointdyn.bearing.shear import couette_torque, film_power_loss, shear_torques
+from jointdyn.bearing.shear import film_power_loss
+from jointdyn.forces.shear import couette_torque, shear_torques
 
 
 def test_lcp_complementarity_and_uniqueness():

@@ -149,7 +149,7 @@ def _solver_help() -> str:
 
 
 #: CLI spelling of the slider-crank builder arguments
-OPTION_NAMES = {k: "--" + k.replace("_", "-") for k in (*options.builder_args(), "friction", "contact")}
+OPTION_NAMES = {k: "--" + k.replace("_", "-") for k in (*options.builder_args(), *options.FLAGS)}
 OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("joint", "revs", "samples_per_rev", "rtol", "atol")}
 
 
@@ -173,6 +173,14 @@ def run(
     length: float = typer.Option(None, help=_arg_help("length", "bearing length")),
     friction: float = typer.Option(None, help="Ambrósio friction coefficient in contact [-] (default 0)"),
     contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact"),
+    shear: bool = typer.Option(
+        None,
+        "--shear/--no-shear",
+        help="lubricated joint: apply the film's shear torques (default: off, as the paper)",
+    ),
+    bushing: str = typer.Option(
+        None, help="body carrying the bearing hole: rod (default, as the paper) or slider"
+    ),
     asperity_height: float = typer.Option(None, help="with --contact: contact starts at h_min < this [m]"),
     restitution: float = typer.Option(
         None, help=_arg_help("restitution", "dry joint: coefficient of restitution")
@@ -196,6 +204,8 @@ def run(
         "friction": friction,
         "asperity_height": asperity_height,
         "restitution": restitution,
+        "shear": shear,
+        "bushing": bushing,
     }
     given = {k: v for k, v in sc_opts.items() if v is not None} | ({"contact": True} if contact else {})
     is_file = model.endswith(".toml") or Path(model).is_file()

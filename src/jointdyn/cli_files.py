@@ -188,12 +188,20 @@ def _film_force_help() -> str:
 def film_force_cmd(
     states: Path = typer.Argument(..., help="CSV with a header naming the state columns listed above"),
     model: str = typer.Option("alshaer2005", help="film model: " + ", ".join(FILM_MODELS)),
+    cavitation: str = typer.Option(None, help="finite model: gumbel (default) or reynolds (Swift–Stieber)"),
     out: Path = typer.Option(None, help="output CSV (default: stdout)"),
 ):
     from .filmtable import film_force_table
 
     with _one_line_errors():
-        film_force_table(states, model, out)
+        if cavitation is not None:
+            if model != "finite":
+                raise ValueError(f"--cavitation: applies to the 'finite' model only (got --model {model!r})")
+            from .forces.film_models import Finite
+
+            film_force_table(states, Finite(cavitation=cavitation), out)
+        else:
+            film_force_table(states, model, out)
 
 
 def _doc(obj) -> str:

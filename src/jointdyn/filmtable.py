@@ -72,7 +72,7 @@ def _parse(rows, head, start: int, src) -> np.ndarray:
     return out
 
 
-def _forces(model: str, data: np.ndarray, start: int, src) -> dict:
+def _forces(model, data: np.ndarray, start: int, src) -> dict:
     try:
         return film_forces(model, *data.T)
     except ValueError:
@@ -85,10 +85,10 @@ def _forces(model: str, data: np.ndarray, start: int, src) -> dict:
     raise AssertionError("unreachable")  # pragma: no cover
 
 
-def film_force_table(src, model: str, out=None) -> int:
+def film_force_table(src, model, out=None) -> int:
     """Read states from CSV ``src``, write them with ``Fr, Ft, Fx, Fy`` [N] appended to ``out``
     (a path, written atomically; None = stdout). Returns the number of rows."""
-    if not isinstance(model, str) or model not in FILM_MODELS:
+    if type(model) not in FILM_MODELS.values() and (not isinstance(model, str) or model not in FILM_MODELS):
         raise ValueError(f"--model {model!r} is unknown; valid: {', '.join(FILM_MODELS)}")
     src = Path(src)
     if src.is_dir():

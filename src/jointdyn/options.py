@@ -48,6 +48,10 @@ def joints() -> tuple[str, ...]:
     return ("perfect", "dry", *FILM_MODELS)
 
 
+#: non-numeric builder arguments the command line sets (besides the numeric ``builder_args``)
+FLAGS = ("friction", "contact", "shear", "bushing")
+
+
 def relevant(joint: str) -> set[str]:
     """Builder arguments that act for ``joint`` (``friction``/``asperity_height`` of a
     lubricated joint act only with ``contact``)."""
@@ -55,8 +59,17 @@ def relevant(joint: str) -> set[str]:
     if joint == "perfect":
         return common
     if joint == "dry":
-        return common | {"clearance", "restitution", "friction"}
-    return common | {"clearance", "viscosity", "length", "contact", "asperity_height", "friction"}
+        return common | {"clearance", "restitution", "friction", "bushing"}
+    return common | {
+        "clearance",
+        "viscosity",
+        "length",
+        "contact",
+        "asperity_height",
+        "friction",
+        "shear",
+        "bushing",
+    }
 
 
 #: allowed ranges (errors) and plausibility bounds (PhysicsWarning) [T140]
@@ -112,8 +125,8 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
         raise ValueError(f"{names.get('joint', 'joint')} = {joint!r}: unknown; valid: {', '.join(joints())}")
     args = builder_args()
     for k in given:
-        if k not in args and k not in ("friction", "contact"):
-            valid = sorted(args) + ["contact", "friction"]
+        if k not in args and k not in FLAGS:
+            valid = sorted(args) + list(FLAGS)
             raise ValueError(f"{names.get(k, k)}: not an argument of the slider-crank; valid: {valid}")
     bad = [k for k in given if k not in relevant(joint)]
     if bad:
@@ -143,6 +156,12 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
         mu = check_value("friction", given["friction"], "-", names.get("friction"))
         if mu > 0:
             kw["friction"] = Ambrosio(coefficient=mu)
+    if "bushing" in given:
+        if given["bushing"] not in ("rod", "slider"):
+            raise ValueError(f"{names.get('bushing', 'bushing')} = {given['bushing']!r}: valid: rod, slider")
+        kw["bushing"] = given["bushing"]
+    if "shear" in given:
+        kw["shear"] = bool(given["shear"])
     if contact:
         rb = sc.JOURNAL_RADIUS + clearance
         K = journal_bearing_stiffness(rb, sc.JOURNAL_RADIUS, sc.YOUNG, sc.POISSON, sc.YOUNG, sc.POISSON)

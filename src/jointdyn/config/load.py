@@ -108,6 +108,10 @@ def _law(ctx: _Context, value, key: tuple, family: str):
     registry = LAW_FIELDS[family]
     if value is None:
         return None
+    if family in NAME_FIELDS and isinstance(value, str):  # a film model by name: its defaults
+        if value not in registry:
+            raise ctx.error(key, f"unknown name {value!r}; valid names: " + ", ".join(registry))
+        return value
     value = _check_table(
         ctx, key, value, "{ law = <name>, ... } with law one of " + ", ".join(sorted(registry))
     )

@@ -32,7 +32,7 @@ from ..simulate import SimConfig
 
 TOP_LEVEL = ("model", "ground", "bodies", "joints", "elements", "simulation")
 #: fields that hold a law *instance*: written as ``{ law = "<name>", ...fields }``
-LAW_FIELDS = {"contact": CONTACT_LAWS, "friction": FRICTION_LAWS}
+LAW_FIELDS = {"contact": CONTACT_LAWS, "friction": FRICTION_LAWS, "film": FILM_MODELS}
 #: string fields that name an entry of a registry
 NAME_FIELDS = {"film": FILM_MODELS, "solver": {"auto": None, **SOLVERS}}
 _REQUIRED = object()
@@ -177,6 +177,7 @@ def schemas() -> dict[str, Any]:
         "elements": {n: _dataclass_schema(c, f"elements type = {n!r}") for n, c in FORCE_ELEMENTS.items()},
         "contact": {n: _dataclass_schema(c, f"contact law = {n!r}") for n, c in CONTACT_LAWS.items()},
         "friction": {n: _dataclass_schema(c, f"friction law = {n!r}") for n, c in FRICTION_LAWS.items()},
+        "film": {n: _dataclass_schema(c, f"film law = {n!r}") for n, c in FILM_MODELS.items()},
         "simulation": _dataclass_schema(SimConfig, "simulation"),
     }
 

@@ -32,7 +32,7 @@ import numpy as np
 from numba import njit
 
 from ..layout import block_width, check_codes, params_of
-from .film_finite import finite_force
+from .film_finite import CAVITATION, DEFAULT_CAVITATION, finite_force
 
 OTT = 0
 ALSHAER2005 = 1
@@ -205,19 +205,26 @@ class Short:
 
 @dataclass(frozen=True)
 class Finite:
-    """Finite-length bearing: 2-D Reynolds by finite differences with Gümbel cavitation,
-    tabulated per L/D (built once, cached on disk) [T36–T38]."""
+    """Finite-length bearing: 2-D Reynolds equation solved numerically, tabulated per L/D and
+    cavitation condition (built once, cached on disk) [T36–T38, T70–T80]."""
 
+    cavitation: str = DEFAULT_CAVITATION
+    """film rupture condition: ``gumbel`` (half-Sommerfeld: negative pressures clipped) or
+    ``reynolds`` (Swift–Stieber: p ≥ 0 and ∂p/∂θ = 0 at rupture, the classical design tables)"""
     code: ClassVar[int] = FINITE
     kernel: ClassVar = finite_force
     tag: ClassVar[str] = "T36"
     PARAMS: ClassVar[tuple[str, ...]] = ()
 
+    def __post_init__(self):
+        if self.cavitation not in CAVITATION:
+            raise ValueError(f"Finite.cavitation = {self.cavitation!r}: unknown; valid: {list(CAVITATION)}")
+
     def table(self, length: float, journal_radius: float) -> np.ndarray:
         """The force table of a bearing of this length and journal radius [m, m]."""
         from .film_finite import build_table
 
-        return build_table(length / (2.0 * journal_radius))
+        return build_table(length / (2.0 * journal_radius), cavitation=self.cavitation)
 
 
 FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005, "short": Short, "finite": Finite}

@@ -38,6 +38,7 @@ from .film_models import FILM_MODELS, FILM_WIDTH, film_force, film_model, film_n
 from .film_models import NONE as NO_FILM
 from .friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient
 from .friction_laws import NONE as NO_FRICTION
+from .shear import couette_torque
 from .transfer import apply_pair, pair_power
 
 JOURNAL = 1
@@ -57,7 +58,7 @@ REAL = Layout(
     ),
     blocks={"film": FILM_WIDTH, "contact": CONTACT_WIDTH, "friction": FRICTION_WIDTH},
 )
-INT = Layout(HEADER + ("film", "contact", "friction", "table"))
+INT = Layout(HEADER + ("film", "contact", "friction", "table", "shear"))
 OUTPUTS = {
     "ex": "m",
     "ey": "m",
@@ -67,6 +68,8 @@ OUTPUTS = {
     "Fy": "N",
     "power": "W",
     "contact_force": "N",
+    "friction_torque": "N·m",
+    "power_loss": "W",
 }
 MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
 
@@ -74,9 +77,9 @@ R_B, R_J, LEN, MU, CLR, H_ASP, ONSET_TOL, V_MIN = REAL.slots(*REAL.names[4:])
 FILM_P0, FILM_P1 = REAL.block("film").start, REAL.block("film").stop
 CONTACT_P0, CONTACT_P1 = REAL.block("contact").start, REAL.block("contact").stop
 FRICTION_P0, FRICTION_P1 = REAL.block("friction").start, REAL.block("friction").stop
-FILM, CONTACT, FRICTION, TABLE = INT.slots("film", "contact", "friction", "table")
+FILM, CONTACT, FRICTION, TABLE, SHEAR = INT.slots("film", "contact", "friction", "table", "shear")
 IN_CONTACT, ONSET_VEL, IMPACTS, MAX_PEN = Layout(MEMORY).slots(*MEMORY)
-O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN = Layout(OUTPUTS).slots(*OUTPUTS)
+O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN, O_TORQUE, O_LOSS = Layout(OUTPUTS).slots(*OUTPUTS)
 XI_GUARD = 1.0 - 1e-9  # film evaluated at most here when no contact law catches ξ → 1
 
 
@@ -172,6 +175,7 @@ class ClearanceJoint:
             "contact": self.contact.code if self.contact is not None else NO_CONTACT,
             "friction": self.friction.code if self.friction is not None else NO_FRICTION,
             "table": table,
+            "shear": int(getattr(self, "shear", False)),
         }
         reals = {
             "bearing_radius": self.bearing_radius,
@@ -218,6 +222,9 @@ class JournalBearing:
     """contact law for the mixed regime, or None (then ξ ≥ 1 stops the simulation)"""
     friction: object | None = None
     """friction law for asperity contact, or None"""
+    shear: bool = True
+    """apply the film's viscous shear torques to journal and bushing [T75] (False: pressure
+    forces only, the assumption of the long-bearing papers)"""
     asperity_height: float = 0.0
     """h_a: contact starts when h_min = c(1 − ξ) < h_a [m], 0 ≤ h_a < c"""
     onset_tolerance: float = 1e-8
@@ -326,7 +333,24 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
         ffy = fr * uy + ft * ty
         # film force at the journal centre, reaction through the same point [T8, T15]
         apply_pair(Q, bi, bj, ffx, ffy, sjx, sjy, six + ex, siy + ey)
-        power += pair_power(qd, bi, bj, ffx, ffy, sjx, sjy, six + ex, siy + ey)
+        film_power = pair_power(qd, bi, bj, ffx, ffy, sjx, sjy, six + ex, siy + ey)
+        if ip[SHEAR] != 0:
+            # shear torques [T75]: M_J = −M_C − (e/2)F_t on the journal; on the bushing
+            # M_C − (e/2)F_t with −F at the bushing centre, i.e. M_C + (e/2)F_t with −F through
+            # the journal centre as applied above: the film exerts no net moment
+            mc = couette_torque(xi_f, r[MU], r[R_J], r[LEN], c, wj - wi)
+            mj = -mc - 0.5 * e * ft
+            mb = mc + 0.5 * e * ft
+            if bj >= 0:
+                Q[3 * bj + 2] += mj
+            if bi >= 0:
+                Q[3 * bi + 2] += mb
+            film_power += mj * wj + mb * wi
+            out[O_TORQUE] = mj
+        else:
+            out[O_TORQUE] = 0.0
+        out[O_LOSS] = -film_power
+        power += film_power
     fn = 0.0
     fcx = 0.0
     fcy = 0.0

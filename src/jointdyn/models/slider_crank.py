@@ -48,6 +48,8 @@ def slider_crank(
     friction=None,
     contact=None,
     asperity_height: float = 0.0,
+    shear: bool = False,
+    bushing: str = "rod",
 ) -> Model:
     """Build the benchmark slider-crank with the rod–slider joint of kind ``joint``.
 
@@ -56,7 +58,10 @@ def slider_crank(
     speed: crank speed, CCW [rad/s]; gravity: along −y [m/s²]; clearance: c = R_B − R_J with
     R_J = 10 mm [m]; viscosity [Pa·s]; length: bearing length [m]; restitution: c_r of the
     dry contact [-]; friction: a friction law for the dry joint or None; contact: a contact law
-    for the mixed regime of a lubricated joint (None = pure film); asperity_height [m].
+    for the mixed regime of a lubricated joint (None = pure film); asperity_height [m];
+    shear: apply the film's shear torques [T75] (False: the paper's assumption, pressure forces
+    only); bushing: the body that carries the bearing hole, ``"rod"`` (the paper's, [T161]) or
+    ``"slider"`` (the pin is then fixed in the rod eye).
     The crank driving moment is the multiplier of the constraint named ``"drive"``.
     """
     if joint not in JOINTS:
@@ -93,21 +98,24 @@ def slider_crank(
         return m
     if not clearance > 0:
         raise ValueError(f"clearance = {clearance!r} [m]: must be > 0")
+    if bushing not in ("rod", "slider"):
+        raise ValueError(f"bushing = {bushing!r}: valid: ['rod', 'slider']")
+    hole, pin = ("rod", "slider") if bushing == "rod" else ("slider", "rod")
     rb = JOURNAL_RADIUS + clearance
     if joint == "dry":
         K = journal_bearing_stiffness(rb, JOURNAL_RADIUS, YOUNG, POISSON, YOUNG, POISSON)
         law = LankaraniNikravesh(stiffness=K, exponent=1.5, restitution=restitution)
         m.add(
             PIN,
-            ClearanceJoint("rod", "B", "slider", "B", rb, JOURNAL_RADIUS, contact=law, friction=friction),
+            ClearanceJoint(hole, "B", pin, "B", rb, JOURNAL_RADIUS, contact=law, friction=friction),
         )
     else:
         m.add(
             PIN,
             JournalBearing(
-                "rod",
+                hole,
                 "B",
-                "slider",
+                pin,
                 "B",
                 rb,
                 JOURNAL_RADIUS,
@@ -117,6 +125,7 @@ def slider_crank(
                 contact=contact,
                 friction=friction,
                 asperity_height=asperity_height,
+                shear=shear,
             ),
         )
     return m
