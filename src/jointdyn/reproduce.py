@@ -48,6 +48,7 @@ BEYOND_CASES = (
     Case("alshaer2005_mu0.1", "alshaer2005", "π-film, μ = 0.1 Pa·s", {"viscosity": 0.1}),
     Case("alshaer2005_mu1.0", "alshaer2005", "π-film, μ = 1.0 Pa·s", {"viscosity": 1.0}),
     Case("finite", "finite", "finite-length (2-D Reynolds, Gümbel), L/D = 2, c = 0.5 mm"),
+    Case("alshaer2005_shear", "alshaer2005", "π-film with the film's shear torques [T75]", {"shear": True}),
 )
 
 SUMMARY_COLUMNS = (
@@ -196,7 +197,7 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
                 ls="--" if n == "perfect" else "-",
                 zorder=3 if n == "perfect" else 2,
             )
-        ax.set_title(f"beyond the paper: clearance, viscosity, finite length ({one})", fontsize=10)
+        ax.set_title(f"beyond the paper: clearance, viscosity, finite length, shear ({one})", fontsize=10)
         ax.set_xlabel(f"crank angle [deg], {one}")
         ax.set_ylabel("moment [N·m]")
         ax.set_xlim(0, 360 * min(1.0, revs))
