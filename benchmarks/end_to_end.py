@@ -141,30 +141,41 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--quick", action="store_true", help="1 repeat, perfect and alshaer2005 only, no CLI")
     ap.add_argument("--no-cli", action="store_true")
+    ap.add_argument(
+        "--write",
+        type=Path,
+        default=None,
+        help="also write the result into FILE's <!-- generated:speed --> block",
+    )
     a = ap.parse_args(argv)
     names = ["perfect", "alshaer2005"] if a.quick else a.cases.split(",")
     rows = [simulate_row(n, 1 if a.quick else a.repeat) for n in names]
-    print(
-        _table(
-            rows,
-            ["case", "solver", "rtol", "simulate_s", "integrate_s", "outputs_s", "save_s", "rhs", "error"],
-        )
-    )
+    cols = ["case", "solver", "rtol", "simulate_s", "integrate_s", "outputs_s", "save_s", "rhs", "error"]
+    lines = [_table(rows, cols), ""]
     by = {r["case"]: r for r in rows}
     if "alshaer2005" in by and "alshaer2005 scipy-radau 1e-7" in by:
         d, s = by["alshaer2005"], by["alshaer2005 scipy-radau 1e-7"]
-        print(
-            f"\nπ-film defaults vs the scipy-Radau path (rtol 1e-7), same process: "
-            f"{s['simulate_s'] / d['simulate_s']:.2f}× faster end to end, "
-            f"errors {d['error']:.2g} vs {s['error']:.2g}"
+        lines.append(
+            f"π-film, library defaults vs the scipy-Radau reference path (compiled RHS, rtol 1e-7), "
+            f"same process: {s['simulate_s'] / d['simulate_s']:.2f}× faster end to end at a max "
+            f"crank-moment error of {d['error']:.2g} vs {s['error']:.2g} of the peak."
         )
     if "perfect" in by:
         p = by["perfect"]
-        print(f"perfect: outputs {p['outputs_s'] / N_OUT * 1e6:.2f} µs per sample; save {p['save_s']:.3f} s")
+        lines.append(
+            f"Perfect joint: output samples cost {p['outputs_s'] / N_OUT * 1e6:.2f} µs each "
+            f"({p['outputs_s'] / p['simulate_s']:.0%} of `simulate`); results.nc + CSV {p['save_s']:.3f} s."
+        )
     if not (a.quick or a.no_cli):
         cli = [cli_row(j) for j in CLI_JOINTS]
-        print()
-        print(_table(cli, ["case", "cli_warm_s", "cli_cold_s", "cold/warm", "rss_MB"]))
+        lines += ["", _table(cli, ["case", "cli_warm_s", "cli_cold_s", "cold/warm", "rss_MB"])]
+    text = "\n".join(lines)
+    print(text)
+    if a.write is not None:
+        from jointdyn.docs_gen import replace_blocks
+
+        doc = a.write.read_text(encoding="utf-8")
+        a.write.write_text(replace_blocks(doc, {"speed": text}), encoding="utf-8")
     return rows
 
 
