@@ -12,13 +12,13 @@ evaluation (it evaluates the forces once for λ and q̈). Lubricated slider-cran
 from __future__ import annotations
 
 import argparse
+import importlib
 import inspect
 import time
 
 import numpy as np
 from numba import njit
 
-import importlib
 from jointdyn.jacobian import system_jacobian
 from jointdyn.models.slider_crank import SPEED, slider_crank
 
@@ -29,7 +29,9 @@ def exact_rodas4():
     src = inspect.getsource(r4.rodas4.py_func)
     src = src.replace("@njit(cache=True)\n", "")
     assert "jacobian(t, y, f0, mem, P, Jm, ft, work, fw)" in src and "stats[0] += nn + 1" in src
-    src = src.replace("jacobian(t, y, f0, mem, P, Jm, ft, work, fw)", "system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw)")
+    src = src.replace(
+        "jacobian(t, y, f0, mem, P, Jm, ft, work, fw)", "system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw)"
+    )
     src = src.replace("stats[0] += nn + 1", "stats[0] += 1")
     ns = dict(vars(r4))
     ns["system_jacobian"] = system_jacobian
@@ -39,7 +41,9 @@ def exact_rodas4():
 
 def run(fn, P, system, t_out, rtol, atol):
     t0 = time.perf_counter()
-    Y, MEM, nw, stats, status, *_ = fn(P, system.y0.copy(), system.mem0.copy(), 0.0, t_out, rtol, atol, 0.0, np.inf, 10**7, True)
+    Y, MEM, nw, stats, status, *_ = fn(
+        P, system.y0.copy(), system.mem0.copy(), 0.0, t_out, rtol, atol, 0.0, np.inf, 10**7, True
+    )
     return time.perf_counter() - t0, Y, stats, status
 
 
@@ -65,7 +69,9 @@ def main(argv=None):
             _, Y, st, status = run(fn, P, system, t_out, rtol, 1e-10)
             assert status == 0, status
             err = np.abs(Y[:, :n] - ref[:, :n]).max()
-            print(f"| {rtol:g} | {name} | {st[0]} | {st[1]} | {st[2]} | {st[0] / st[1]:.2f} | {best:.3f} | {err:.2e} |")
+            print(
+                f"| {rtol:g} | {name} | {st[0]} | {st[1]} | {st[2]} | {st[0] / st[1]:.2f} | {best:.3f} | {err:.2e} |"
+            )
 
 
 if __name__ == "__main__":

@@ -3,7 +3,7 @@
 Central differences with one Richardson extrapolation (error O(h⁴)), or one-sided differences
 with two Richardson extrapolations (error O(h³)) next to a point where the function is only C¹
 (a cell boundary of a table interpolant, ξ = 0). Each is evaluated on a geometric sequence of
-steps h_max·4^−k and the estimate that agrees best with its successor is returned (the step
+steps h_max·4^−k and, per component, the estimate that agrees best with its successor is returned (the step
 where truncation and rounding balance; the same idea as numdifftools). Steps are made exactly
 representable ((x + h) − x), so the reference measures the derivative, not the rounding of x + h.
 """
@@ -37,9 +37,10 @@ def _one_sided1(f, x, h):
 
 
 def _best(rule, f, x, h_max, n):
-    est = [rule(f, x, h_max * 4.0**-k) for k in range(n)]
-    diffs = [np.abs(est[k] - est[k + 1]).max() for k in range(n - 1)]
-    return est[int(np.argmin(diffs))]
+    """Per component, the estimate that agrees best with the next smaller step's."""
+    est = np.array([np.atleast_1d(rule(f, x, h_max * 4.0**-k)) for k in range(n)])
+    k = np.argmin(np.abs(np.diff(est, axis=0)), axis=0)
+    return est[k, np.arange(est.shape[1])]
 
 
 def central(f, x, h_max, n=7):

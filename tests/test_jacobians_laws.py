@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from fd_reference import central, one_sided
 
 from jointdyn.forces.contact_jacobians import contact_jac, friction_jac
 from jointdyn.forces.contact_laws import CONTACT_LAWS, contact_force
@@ -14,8 +15,6 @@ from jointdyn.forces.film_finite import build_table
 from jointdyn.forces.film_jacobians import film_jac
 from jointdyn.forces.film_models import FILM_MODELS, film_force
 from jointdyn.forces.friction_laws import FRICTION_LAWS, friction_coefficient
-
-from fd_reference import central, one_sided
 
 MU, R, L, C = 0.4, 0.01, 0.04, 5e-4  # the benchmark bearing [Pa·s, m, m, m]
 N_STATES = 1200

@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .dynamics import accelerations, cholesky_solve
+from .dynamics import accelerations
 from .forces.element_jacobians import force_jacobian
 from .forces.elements import NOUT
 from .joints.constraints import ANGLE_DRIVER, REVOLUTE, TRANSLATIONAL, eval_constraints
