@@ -69,9 +69,17 @@ def main(argv=None):
             _, Y, st, status = run(fn, P, system, t_out, rtol, 1e-10)
             assert status == 0, status
             err = np.abs(Y[:, :n] - ref[:, :n]).max()
-            print(
-                f"| {rtol:g} | {name} | {st[0]} | {st[1]} | {st[2]} | {st[0] / st[1]:.2f} | {best:.3f} | {err:.2e} |"
+            row = (
+                f"{rtol:g}",
+                name,
+                st[0],
+                st[1],
+                st[2],
+                f"{st[0] / st[1]:.2f}",
+                f"{best:.3f}",
+                f"{err:.2e}",
             )
+            print("| " + " | ".join(map(str, row)) + " |")
 
 
 if __name__ == "__main__":
