@@ -198,31 +198,26 @@ def _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt):
     out = np.zeros((1, NOUT))
     qw = q.copy()
     qdw = qd.copy()
-    for side in range(2):
-        b = fint[k, 1] if side == 0 else fint[k, 2]
-        if b < 0 or (side == 1 and b == fint[k, 1]):
-            continue
-        for s in range(3):
-            col = 3 * b + s
-            for which in range(2):
-                base = q[col] if which == 0 else qd[col]
-                h = 6.055454452393343e-06 * max(abs(base), 1e-3 if which == 0 else 1.0)  # ε^(1/3)
-                if which == 0:
-                    qw[col] = base + h
-                    _element_q(t, qw, qd, mem, fint, freal, tables, k, Qp, out)
-                    qw[col] = base - h
-                    _element_q(t, qw, qd, mem, fint, freal, tables, k, Qm, out)
-                    qw[col] = base
-                    for i in range(n):
-                        dQdq[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
-                else:
-                    qdw[col] = base + h
-                    _element_q(t, q, qdw, mem, fint, freal, tables, k, Qp, out)
-                    qdw[col] = base - h
-                    _element_q(t, q, qdw, mem, fint, freal, tables, k, Qm, out)
-                    qdw[col] = base
-                    for i in range(n):
-                        dQdqd[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
+    for col in range(n):  # every coordinate: an element may read other bodies (a tabulated force)
+        for which in range(2):
+            base = q[col] if which == 0 else qd[col]
+            h = 6.055454452393343e-06 * max(abs(base), 1e-3 if which == 0 else 1.0)  # ε^(1/3)
+            if which == 0:
+                qw[col] = base + h
+                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qp, out)
+                qw[col] = base - h
+                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qm, out)
+                qw[col] = base
+                for i in range(n):
+                    dQdq[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
+            else:
+                qdw[col] = base + h
+                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qp, out)
+                qdw[col] = base - h
+                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qm, out)
+                qdw[col] = base
+                for i in range(n):
+                    dQdqd[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
     h = 6.055454452393343e-06 * max(abs(t), 1e-3)
     _element_q(t + h, q, qd, mem, fint, freal, tables, k, Qp, out)
     _element_q(t - h, q, qd, mem, fint, freal, tables, k, Qm, out)
