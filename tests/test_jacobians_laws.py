@@ -232,3 +232,21 @@ def test_friction_jacobian_matches_finite_differences(name):
         if sc > 0:
             worst = max(worst, abs(dmu - ref) * sig / sc)
     assert worst <= TOL, f"{name}: {worst:.3g}"
+
+
+if __name__ == "__main__":  # the table of the report: python tests/test_jacobians_laws.py
+    for model in sorted(FILM_MODELS):
+        tab = _table(model)
+        code = FILM_MODELS[model].code
+        rows = []
+        for x in film_states(1):
+            r = film_jac(code, *x, MU, R, L, C, tab)
+            Ja = np.array([[r[2], r[3], r[4]], [r[5], r[6], r[7]]])
+            Jf = fd_film(model, x, tab)
+            rows.append((1.0 - x[0], row_errors(r[:2], Ja, Jf, scales(x))))
+        a = np.array(rows)
+        parts = [f"all {a[:, 1].max():.2e}"]
+        for lo in (1e-6, 3e-4, 1e-2):
+            m = a[:, 0] >= lo * 0.999
+            parts.append(f"1−ξ ≥ {lo:g}: {a[m, 1].max():.2e} ({m.sum()})")
+        print(f"{model:12s} " + ", ".join(parts))
