@@ -3,7 +3,8 @@
 Central differences with one Richardson extrapolation (error O(h⁴)), or one-sided differences
 with two Richardson extrapolations (error O(h³)) next to a point where the function is only C¹
 (a cell boundary of a table interpolant, ξ = 0). Each is evaluated on a geometric sequence of
-steps h_max·4^−k and, per component, the estimate that agrees best with its successor is returned (the step
+steps h_max·4^−k and, per component, the estimate that agrees best with both its neighbours is
+returned (the step
 where truncation and rounding balance; the same idea as numdifftools). Steps are made exactly
 representable ((x + h) − x), so the reference measures the derivative, not the rounding of x + h.
 """
@@ -37,9 +38,13 @@ def _one_sided1(f, x, h):
 
 
 def _best(rule, f, x, h_max, n):
-    """Per component, the estimate that agrees best with the next smaller step's."""
+    """Per component, the estimate that agrees best with both neighbours in the step sequence
+    (two-sided, so two noise-dominated estimates agreeing by chance are not picked)."""
     est = np.array([np.atleast_1d(rule(f, x, h_max * 4.0**-k)) for k in range(n)])
-    k = np.argmin(np.abs(np.diff(est, axis=0)), axis=0)
+    d = np.abs(np.diff(est, axis=0))  # d[k] = |D_k − D_{k+1}|
+    score = np.full(est.shape, np.inf)
+    score[1:-1] = np.maximum(d[:-1], d[1:])
+    k = np.argmin(score, axis=0)
     return est[k, np.arange(est.shape[1])]
 
 

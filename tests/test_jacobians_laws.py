@@ -13,10 +13,12 @@ from jointdyn.forces.contact_jacobians import contact_jac, friction_jac
 from jointdyn.forces.contact_laws import CONTACT_LAWS, contact_force
 from jointdyn.forces.film_finite import build_table
 from jointdyn.forces.film_jacobians import film_jac
-from jointdyn.forces.film_models import FILM_MODELS, film_force
+from jointdyn.forces.film_models import FILM_MODELS, FILM_WIDTH, film_force
 from jointdyn.forces.friction_laws import FRICTION_LAWS, friction_coefficient
+from jointdyn.layout import params_of
 
 MU, R, L, C = 0.4, 0.01, 0.04, 5e-4  # the benchmark bearing [Pa·s, m, m, m]
+P0 = np.zeros(FILM_WIDTH)  # the film models have no parameters of their own
 N_STATES = 1200
 # goal of the issue: ≤ 1e-6 relative. The reference's own error is O(h⁴) with h = 1e-3 of the
 # local scale (≈ 1e-12) plus rounding ≈ 1e-16/1e-3 ≈ 1e-13 times the conditioning of the
@@ -102,7 +104,7 @@ def fd_film(model, x, tab):
         def f(v, j=j):
             y = list(x)
             y[j] = v
-            return film_force(code, y[0], y[1], y[2], MU, R, L, C, tab)
+            return film_force(code, y[0], y[1], y[2], MU, R, L, C, P0, tab)
 
         h = steps[j]
         if (j == 0 and xi == 0.0) or (j == 1 and A == 0.0):
@@ -151,8 +153,8 @@ def max_film_error(model, seed=1):
     for x in film_states(seed):
         if model == "short" and x[0] > SHORT_XI_MAX:
             continue
-        r = film_jac(code, *x, MU, R, L, C, tab)
-        F = film_force(code, *x, MU, R, L, C, tab)
+        r = film_jac(code, *x, MU, R, L, C, P0, tab)
+        F = film_force(code, *x, MU, R, L, C, P0, tab)
         assert r[0] == F[0] and r[1] == F[1], (model, x)  # same force as the kernel, bit for bit
         Ja = np.array([[r[2], r[3], r[4]], [r[5], r[6], r[7]]])
         e = row_errors(F, Ja, fd_film(model, x, tab), scales(x))
@@ -168,9 +170,9 @@ def test_film_jacobian_matches_finite_differences(model):
 
 
 def test_film_jacobian_zero_state_and_unknown_code():
-    z = film_jac(0, 0.3, 0.0, 0.0, MU, R, L, C, np.zeros((1, 2)))
+    z = film_jac(0, 0.3, 0.0, 0.0, MU, R, L, C, P0, np.zeros((1, 2)))
     assert z == (0.0,) * 8  # F ≡ 0 at A = B = 0 [T90]
-    assert all(math.isnan(v) for v in film_jac(99, 0.3, 1.0, 1.0, MU, R, L, C, np.zeros((1, 2))))
+    assert all(math.isnan(v) for v in film_jac(99, 0.3, 1.0, 1.0, MU, R, L, C, P0, np.zeros((1, 2))))
 
 
 CONTACT_PARAMS = {
@@ -185,7 +187,7 @@ CONTACT_PARAMS = {
 @pytest.mark.parametrize("name", sorted(CONTACT_LAWS))
 def test_contact_jacobian_matches_finite_differences(name):
     law = CONTACT_LAWS[name](**CONTACT_PARAMS[name])
-    p = np.array(law.params())
+    p = np.array(params_of(law))
     rng = np.random.default_rng(2)
     worst = 0.0
     n = 0
@@ -213,7 +215,7 @@ def test_contact_jacobian_matches_finite_differences(name):
 @pytest.mark.parametrize("name", sorted(FRICTION_LAWS))
 def test_friction_jacobian_matches_finite_differences(name):
     law = FRICTION_LAWS[name](coefficient=0.3)
-    p = np.array(law.params())
+    p = np.array(params_of(law))
     rng = np.random.default_rng(3)
     worst = 0.0
     for _ in range(N_STATES):
@@ -240,7 +242,7 @@ if __name__ == "__main__":  # the table of the report: python tests/test_jacobia
         code = FILM_MODELS[model].code
         rows = []
         for x in film_states(1):
-            r = film_jac(code, *x, MU, R, L, C, tab)
+            r = film_jac(code, *x, MU, R, L, C, P0, tab)
             Ja = np.array([[r[2], r[3], r[4]], [r[5], r[6], r[7]]])
             Jf = fd_film(model, x, tab)
             rows.append((1.0 - x[0], row_errors(r[:2], Ja, Jf, scales(x))))

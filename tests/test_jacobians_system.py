@@ -18,12 +18,13 @@ from jointdyn.models.slider_crank import JOINTS, slider_crank
 from jointdyn.simulate import SimConfig, simulate
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
-# exact vs reference: the reference's own error (O(h⁴) truncation balanced against rounding,
-# tests/fd_reference.py) is ≤ 1e-8 of a column here (measured: see the report); the goal is 1e-6
+# goal of the issue: 1e-6. Measured (this file's states): slider-crank ≤ 3.1e-8 for every joint
+# kind, Baumgarte 1.6e-9, four-bar 1.3e-7, engine 4.8e-8; the reference's rounding noise,
+# measured on the driven rows whose exact Jacobian is 0, is ≤ 5.7e-7 of a column
 TOL = 1e-6
 
 
-def fd_jacobian(t, y, mem, P, vel_step=1e-3):
+def fd_jacobian(t, y, mem, P, vel_step=0.1):
     nn = y.shape[0]
     n = nn // 2
     out = np.empty(nn)
@@ -39,14 +40,15 @@ def fd_jacobian(t, y, mem, P, vel_step=1e-3):
 
     Jf = np.empty((nn, nn))
     for j in range(nn):
-        h = 1e-6 if j < n else vel_step * max(1.0, abs(y[j]))  # largest steps [m or rad], [m/s or rad/s]
-        Jf[:, j] = central(f_of(j), y[j], h)
+        # largest steps [m], [rad], [m/s or rad/s]; 12 steps down to 4^-11 of these are searched
+        h = (1e-6 if j % 3 != 2 else 1e-4) if j < n else vel_step * max(1.0, abs(y[j]))
+        Jf[:, j] = central(f_of(j), y[j], h, n=12)
 
     def g(tt):
         rhs(tt, y, mem, P, out)
         return out.copy()
 
-    ft = central(g, t, 1e-7)
+    ft = central(g, t, 1e-5, n=9)
     return Jf, ft
 
 
@@ -96,7 +98,7 @@ def column_error(Ja, Jf, skip=()):
     return err
 
 
-def check(system, t_end, n_states=12, baumgarte=0.0, seed=0, vel_step=1e-3):
+def check(system, t_end, n_states=12, baumgarte=0.0, seed=0, vel_step=0.1):
     P = system.packed(baumgarte)
     nn = system.y0.shape[0]
     rng = np.random.default_rng(seed)
@@ -168,10 +170,14 @@ def test_four_bar_lubricated():
     model, _ = load_model(EXAMPLES / "four_bar_lubricated.toml")
     system = model.compile()
     err, noise = check(system, 0.01, n_states=10)
-    # c = 40 µm and a large driving moment: the reference's rounding noise (measured on the
-    # driven row, whose exact Jacobian is 0) is 4.5e-5 of a column here, so the comparison is
-    # bounded by max(TOL, noise); measured err 5.8e-6
-    assert err <= max(TOL, noise), f"{err:.3g} vs noise {noise:.3g}"
+    assert err <= TOL, f"{err:.3g} (reference noise {noise:.3g})"
+
+
+def test_engine_with_two_bearings_and_a_tabulated_force():
+    """Two film bearings (exact) and a tabulated gas force (finite-difference fallback [T100])."""
+    model, _ = load_model(EXAMPLES / "engine_single_cylinder.toml")
+    err, noise = check(model.compile(), 0.01, n_states=8)
+    assert err <= TOL, f"{err:.3g} (reference noise {noise:.3g})"
 
 
 def test_fallback_differentiates_a_tabulated_force_of_another_body():

@@ -14,7 +14,8 @@ import math
 import numpy as np
 
 from .forces.film_jacobians import film_jac
-from .forces.film_models import FILM_MODELS
+from .forces.film_models import FILM_MODELS, FILM_WIDTH, film_model
+from .layout import params_of
 
 _NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
 
@@ -31,20 +32,23 @@ def _check(model, ld, eps):
 _TABLES: dict[float, np.ndarray] = {}
 
 
-def _table(model, ld):
-    if not hasattr(FILM_MODELS[model], "table"):
+def _table(fm, ld):
+    if not hasattr(fm, "table"):
         return np.zeros((1, 2))
     if ld not in _TABLES:
-        _TABLES[ld] = FILM_MODELS[model].table(2.0 * ld, 1.0)  # L = 2·ld for R = 1
+        _TABLES[ld] = fm.table(2.0 * ld, 1.0)  # L = 2·ld for R = 1
     return _TABLES[ld]
 
 
 def _film_cartesian(model, ld, eps, omega=1.0):
     """Static film force F (2,), ∂F/∂e, ∂F/∂ė (2×2) at e = ε(cosγ, sinγ) with γ = 0, ė = 0, for
     R = c = μ = 1, L = 2·ld [T105]. Rotating to the equilibrium angle is done by the caller."""
-    tab = _table(model, ld)
+    fm = film_model(model)
+    tab = _table(fm, ld)
+    p = np.zeros(FILM_WIDTH)
+    p[: len(type(fm).PARAMS)] = params_of(fm)
     fr, ft, frx, fra, fro, ftx, fta, fto = film_jac(
-        FILM_MODELS[model].code, eps, 0.0, eps * omega, 1.0, 1.0, 2.0 * ld, 1.0, tab
+        fm.code, eps, 0.0, eps * omega, 1.0, 1.0, 2.0 * ld, 1.0, p, tab
     )
     u = np.array([1.0, 0.0])
     t = np.array([0.0, 1.0])

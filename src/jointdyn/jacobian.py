@@ -21,8 +21,18 @@ from numba import njit
 from .dynamics import accelerations
 from .forces.element_jacobians import force_jacobian
 from .forces.elements import NOUT
-from .joints.constraints import ANGLE_DRIVER, REVOLUTE, TRANSLATIONAL, eval_constraints
+from .joints.constraints import (
+    ALPHA,
+    ANGLE_DRIVER,
+    AXIS_X,
+    AXIS_Y,
+    REVOLUTE,
+    ROW,
+    TRANSLATIONAL,
+    eval_constraints,
+)
 from .kinematics import body_state, point_kinematics
+from .layout import BODY_I, BODY_J, ETA_I, ETA_J, TYPE, XI_I, XI_J
 
 
 @njit(cache=True)
@@ -63,13 +73,13 @@ def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq
     Hs = np.zeros((6, 6))
     gq = np.zeros(6)
     for k in range(cint.shape[0]):
-        typ = cint[k, 0]
-        bi = cint[k, 1]
-        bj = cint[k, 2]
-        r = cint[k, 3]
+        typ = cint[k, TYPE]
+        bi = cint[k, BODY_I]
+        bj = cint[k, BODY_J]
+        r = cint[k, ROW]
         if typ == REVOLUTE:
-            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, 0], creal[k, 1])
-            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, 2], creal[k, 3])
+            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, XI_I], creal[k, ETA_I])
+            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, XI_J], creal[k, ETA_J])
             wi = body_state(q, qd, bi)[5]
             wj = body_state(q, qd, bj)[5]
             for row in range(2):
@@ -84,15 +94,15 @@ def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq
                 gq[5] = -wj * wj * (-sjy if row == 0 else sjx)
                 _add_row(Hs, gq, r + row, bi, bj, lam[r + row], qdd, qd, Hlam, Dacc, Dvel, Gq, Gqd)
         elif typ == TRANSLATIONAL:
-            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, 0], creal[k, 1])
-            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, 2], creal[k, 3])
+            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, XI_I], creal[k, ETA_I])
+            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, XI_J], creal[k, ETA_J])
             phii = body_state(q, qd, bi)[2]
             wi = body_state(q, qd, bi)[5]
             wj = body_state(q, qd, bj)[5]
             ci = math.cos(phii)
             si_ = math.sin(phii)
-            nlx = -creal[k, 5]
-            nly = creal[k, 4]
+            nlx = -creal[k, AXIS_Y]
+            nly = creal[k, AXIS_X]
             nx = ci * nlx - si_ * nly
             ny = si_ * nlx + ci * nly
             bnx = -ny
@@ -126,7 +136,7 @@ def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq
             )
             _add_row(Hs, gq, r, bi, bj, lam[r], qdd, qd, Hlam, Dacc, Dvel, Gq, Gqd)
         elif typ == ANGLE_DRIVER:
-            gt[r] = creal[k, 6]  # −Φ_tt = α  [T7]
+            gt[r] = creal[k, ALPHA]  # −Φ_tt = α  [T7]
 
 
 @njit(cache=True)
@@ -172,7 +182,9 @@ def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
     """Exact Jm = ∂f/∂y (2n×2n) and ft = ∂f/∂t at (t, y) [T101–T104]; same signature and meaning
     as ``integrators.rodas4.jacobian`` (f0, work, fw are unused/scratch). Costs one force
     evaluation (for λ, q̈) plus the element Jacobians. Returns a status (0 = ok)."""
-    minv, Q0, cint, creal, fint, freal, tables, m, stab, ws = P
+    minv, cint, creal, fint, freal, tables = P.minv, P.cint, P.creal, P.fint, P.freal, P.tables
+    m = P.n_rows
+    stab = P.stab
     nn = y.shape[0]
     n = nn // 2
     q = y[:n].copy()

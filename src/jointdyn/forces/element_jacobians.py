@@ -12,6 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from ..layout import BODY_I, BODY_J, TYPE
 from .contact_jacobians import contact_jac, friction_jac
 from .contact_laws import KELVIN_VOIGT
 from .elements import NOUT, eval_forces
@@ -20,15 +21,22 @@ from .film_models import ALSHAER2005, FINITE, OTT, SHORT
 from .journal import (
     CLR,
     CONTACT,
-    CP0,
+    CONTACT_P0,
+    CONTACT_P1,
     FILM,
-    FP0,
+    FILM_P0,
+    FILM_P1,
     FRICTION,
+    FRICTION_P0,
+    FRICTION_P1,
     H_ASP,
     IN_CONTACT,
     JOURNAL,
     LEN,
     MU,
+    NO_CONTACT,
+    NO_FILM,
+    NO_FRICTION,
     ONSET_VEL,
     R_B,
     R_J,
@@ -59,7 +67,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
 
     Returns 0, or 1 where the element is not differentiable analytically (e = 0, or a film
     model without an exact Jacobian): the caller then uses finite differences."""
-    if ip[FILM] >= 0 and not (
+    if ip[FILM] != NO_FILM and not (
         ip[FILM] == OTT or ip[FILM] == ALSHAER2005 or ip[FILM] == SHORT or ip[FILM] == FINITE
     ):
         return 1
@@ -116,8 +124,8 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
     F = np.empty(2)
     DF = np.empty((2, 12))
     xi = e / c
-    if ip[FILM] >= 0:
-        xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] >= 0 else XI_GUARD
+    if ip[FILM] != NO_FILM:
+        xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
         xi_f = min(xi, xi_cap, XI_GUARD)
         Dxi = ude / c if xi < xi_cap and xi < XI_GUARD else np.zeros(12)
         xid = ue / c
@@ -125,7 +133,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
         Dxid = (te * tde / e + uded) / c
         DX = Dxi * (wj + wi) + xi_f * Dwsum - 2.0 * (-ue * tde / e + tded) / c
         fr, ft, frx, fra, fro, ftx, fta, fto = film_jac(
-            ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, tables[ip[TABLE]]
+            ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
         )
         Dfr = frx * Dxi + fra * Dxid + fro * DX
         Dft = ftx * Dxi + fta * Dxid + fto * DX
@@ -136,20 +144,20 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
             DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
         # film force at the journal centre: a_j = s_j, a_i = s_i + e [T8, T15]
         _pair_jac(DQ, F, DF, sjx, sjy, Dsj, six + ex, siy + ey, Dsi + De)
-    if ip[CONTACT] >= 0:
+    if ip[CONTACT] != NO_CONTACT:
         delta = e - (c - r[H_ASP])
         if delta > 0.0:
             in_c = mem[IN_CONTACT] > 0.5
             v0 = mem[ONSET_VEL] if in_c else max(ue, r[V_MIN])
-            fn, fnd, fndd = contact_jac(ip[CONTACT], delta, ue, v0, r[CP0 : CP0 + 4])
+            fn, fnd, fndd = contact_jac(ip[CONTACT], delta, ue, v0, r[CONTACT_P0:CONTACT_P1])
             if not in_c and ue > r[V_MIN] and ip[CONTACT] != KELVIN_VOIGT:
                 fndd = 0.0  # δ̇⁻ = δ̇ at an unrecorded onset: F = Kδⁿ(1 + χ) [T16]
             Dfn = fnd * ude + fndd * (te * tde / e + uded)
             vt = te + wj * r[R_J] - wi * r[R_B]
             mu = 0.0
             dmu = 0.0
-            if ip[FRICTION] > 0:
-                mu, dmu = friction_jac(ip[FRICTION], vt, r[FP0 : FP0 + 4])
+            if ip[FRICTION] != NO_FRICTION:
+                mu, dmu = friction_jac(ip[FRICTION], vt, r[FRICTION_P0:FRICTION_P1])
             Dvt = -ue * tde / e + tded
             Dvt[11] += r[R_J]
             Dvt[8] -= r[R_B]
@@ -235,10 +243,15 @@ def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt):
     DQ = np.empty((6, 12))
     n_fd = 0
     for k in range(fint.shape[0]):
-        if fint[k, 0] == JOURNAL:
+        if fint[k, TYPE] == JOURNAL:
             DQ[:, :] = 0.0
-            if journal_jacobian(q, qd, mem[k], fint[k, 1], fint[k, 2], fint[k], freal[k], tables, DQ) == 0:
-                _scatter(DQ, fint[k, 1], fint[k, 2], dQdq, dQdqd)
+            if (
+                journal_jacobian(
+                    q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, DQ
+                )
+                == 0
+            ):
+                _scatter(DQ, fint[k, BODY_I], fint[k, BODY_J], dQdq, dQdqd)
                 continue
         _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt)
         n_fd += 1

@@ -1,6 +1,6 @@
 """Exact Jacobians of the film kernels (compiled), hand-derived [T90–T95].
 
-Every function here has the film-kernel arguments ``(xi, xi_dot, xi_Omega, mu, R, L, c, table)``
+Every function here has the film-kernel arguments ``(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)``
 (see :mod:`jointdyn.forces.film_models`: ξ [-], ξ̇ [1/s], X = ξΩ [rad/s], μ [Pa·s], R, L, c [m])
 and returns the 8-tuple
 
@@ -36,7 +36,7 @@ def _datan_y_over_y(y):
 
 
 @njit(cache=True)
-def pi_film_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def pi_film_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """π-film [T21–T23] and its exact Jacobian [T91]."""
     A = xi_dot
     s = 2.0 + xi * xi
@@ -109,7 +109,7 @@ def pi_film_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 
 @njit(cache=True)
-def ott_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def ott_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Ott's model [T25, T26] and its exact Jacobian [T92] (|ξ̇| enters only multiplied by
     ξξ̇, so the first derivatives are continuous at ξ̇ = 0)."""
     A = xi_dot
@@ -154,7 +154,7 @@ def ott_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 
 @njit(cache=True)
-def short_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def short_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Short-bearing π-film [T35] and its exact Jacobian [T93]: the pressure vanishes at both
     ends of the film arc, so ∂/∂(ξ̇, X) act on the integrands only; ∂/∂ξ differentiates the
     closed forms at fixed arc ends with ∂δ/∂ξ|_θ = −sin θ/(√(1−ξ²)(1 + ξ cos θ))."""
@@ -219,7 +219,7 @@ def _catmull_rom_d(p0, p1, p2, p3, w):
 
 
 @njit(cache=True)
-def finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Tabulated finite-length film [T37] and the exact Jacobian of its interpolant [T94]."""
     A = xi_dot
     s2 = 2.0 + xi * xi
@@ -303,17 +303,17 @@ def finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table):
 
 
 @njit(cache=True)
-def film_jac(code, xi, xi_dot, xi_Omega, mu, R, L, c, table):
+def film_jac(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Film force and Jacobian of model ``code`` (8-tuple, see module docstring); NaNs for a
     code without an analytic Jacobian (callers fall back to finite differences) [T90]."""
     if code == OTT:
-        return ott_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return ott_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     elif code == ALSHAER2005:
-        return pi_film_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return pi_film_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     elif code == SHORT:
-        return short_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return short_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     elif code == FINITE:
-        return finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, table)
+        return finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
     nan = math.nan
     return nan, nan, nan, nan, nan, nan, nan, nan
 
