@@ -132,6 +132,7 @@ def check(system, t_end, n_states=12, baumgarte=0.0, seed=0, vel_step=0.1):
 REV = 2 * np.pi / (5000 * 2 * np.pi / 60)  # one crank revolution at 5000 rpm [s]
 
 
+@pytest.mark.filterwarnings("ignore:JournalBearing. film model 'short':jointdyn.errors.PhysicsWarning")
 @pytest.mark.parametrize("joint", JOINTS)
 def test_slider_crank_system_jacobian(joint):
     system = slider_crank(joint).compile()
