@@ -206,3 +206,9 @@ def test_finite_stiffness_tends_to_long_pi_film():
     k8 = _max_rel_diff("finite", 8.0, "alshaer2005", 1.0, NAMES[:4])
     k32 = _max_rel_diff("finite", 32.0, "alshaer2005", 1.0, NAMES[:4])
     assert k32 < k8 / 3 and k32 < 0.005
+
+
+def test_columns_declared():
+    from jointdyn.coefficients import COLUMNS
+
+    assert set(dynamic_coefficients("ott", 1.0, 0.5)) == set(COLUMNS)

@@ -13,6 +13,7 @@ from fd_reference import central
 from jointdyn.config import load_model
 from jointdyn.dynamics import rhs
 from jointdyn.forces.element_jacobians import force_jacobian
+from jointdyn.forces.journal import ClearanceJoint, JournalBearing
 from jointdyn.jacobian import system_jacobian
 from jointdyn.models.slider_crank import JOINTS, slider_crank
 from jointdyn.simulate import SimConfig, simulate
@@ -110,6 +111,11 @@ def check(system, t_end, n_states=12, baumgarte=0.0, seed=0, vel_step=0.1):
         f0 = np.empty(nn)
         rhs(t, y, mem, P, f0)
         assert system_jacobian(t, y, f0, mem, P, Jm, ft, np.empty(nn), np.empty(nn)) == 0
+        # the journal elements took the exact path (only other element types use the fallback)
+        n = system.n
+        dQ = np.empty((n, n))
+        n_fd = force_jacobian(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables, dQ, dQ.copy(), np.empty(n))
+        assert n_fd == sum(not isinstance(e, (JournalBearing, ClearanceJoint)) for e in system.elements)
         Jf, ftf = fd_jacobian(t, y, mem, P, vel_step)
         # a driven angle has φ̈ = α whatever the state: its Jacobian row vanishes up to rounding
         # (the reference there is pure rounding noise, eps·|Φ_qᵀλ|/(I h), so it is not compared)

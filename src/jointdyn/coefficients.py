@@ -18,6 +18,16 @@ from .forces.film_models import FILM_MODELS, FILM_WIDTH, film_model
 from .layout import params_of
 
 _NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
+COLUMNS = {
+    **{k: "-" for k in _NAMES},
+    "eps": "-",
+    "attitude": "rad",
+    "sommerfeld": "-",
+    "critical_mass": "-",
+    "whirl_ratio": "-",
+}
+"""keys of :func:`dynamic_coefficients` -> unit (all dimensionless but the attitude angle): the
+columns for ``bearing-table``"""
 
 
 def _check(model, ld, eps):
