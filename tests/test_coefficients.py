@@ -212,3 +212,46 @@ def test_columns_declared():
     from jointdyn.coefficients import COLUMNS
 
     assert set(dynamic_coefficients("ott", 1.0, 0.5)) == set(COLUMNS)
+
+
+@pytest.mark.parametrize("model,ld", [("short", 0.25), ("alshaer2005", 1.0)])
+def test_system_jacobian_of_a_rotor_on_the_bearing_gives_the_coefficients(model, ld):
+    """A free rotor (mass m, spin ω) in a fixed bearing, loaded by gravity, sitting at the static
+    equilibrium of ε = 0.6: the multibody system Jacobian [T101] (no constraints) must contain
+    ∂ẍ/∂x = −K/m and ∂ẍ/∂ẋ = −C/m with K = k W/c, C = c̄ W/(cω) from [T107] — two independent
+    paths (element chain rule vs the Cartesian linearisation)."""
+    from jointdyn.forces.journal import JournalBearing
+    from jointdyn.jacobian import system_jacobian
+    from jointdyn.model import Model
+
+    eps, R, c, mu, omega, g = 0.6, 0.01, 5e-5, 0.02, 300.0, 9.81
+    L = 2 * R * ld
+    d = dynamic_coefficients(model, ld, eps)
+    # W from S = μ N L D (R/c)²/W, N = ω/2π
+    W = mu * omega / (2 * PI) * L * 2 * R * (R / c) ** 2 / d["sommerfeld"]
+    mass = W / g
+    gam = d["attitude"] - PI / 2
+    m = Model("rotor", gravity=(0.0, -g))
+    m.add_ground_point("O", (0.0, 0.0))
+    pos = (eps * c * math.cos(gam), eps * c * math.sin(gam))
+    m.add_body(
+        "rotor", mass, 1e-4, position=pos, angle=0.0, velocity=(0.0, 0.0, omega), points={"C": (0.0, 0.0)}
+    )
+    m.add("brg", JournalBearing("ground", "O", "rotor", "C", R + c, R, L, mu, film=model))
+    s = m.compile(centre_imperfect=False)
+    P = s.packed(0.0)
+    y = s.y0.copy()
+    nn = y.size
+    Jm = np.empty((nn, nn))
+    ft = np.empty(nn)
+    f0 = np.empty(nn)
+    assert system_jacobian(0.0, y, f0, s.mem0, P, Jm, ft, np.empty(nn), np.empty(nn)) == 0
+    from jointdyn.dynamics import rhs
+
+    rhs(0.0, y, s.mem0, P, f0)
+    assert np.abs(f0[3:5]).max() <= 1e-9 * g  # static equilibrium: film force balances gravity
+    K = np.array([[d["kxx"], d["kxy"]], [d["kyx"], d["kyy"]]]) * W / c
+    C = np.array([[d["cxx"], d["cxy"]], [d["cyx"], d["cyy"]]]) * W / (c * omega)
+    # both exact: rounding only
+    assert np.allclose(-Jm[3:5, 0:2] * mass, K, rtol=1e-9, atol=1e-9 * np.abs(K).max())
+    assert np.allclose(-Jm[3:5, 3:5] * mass, C, rtol=1e-9, atol=1e-9 * np.abs(C).max())
