@@ -255,3 +255,27 @@ def test_system_jacobian_of_a_rotor_on_the_bearing_gives_the_coefficients(model,
     # both exact: rounding only
     assert np.allclose(-Jm[3:5, 0:2] * mass, K, rtol=1e-9, atol=1e-9 * np.abs(K).max())
     assert np.allclose(-Jm[3:5, 3:5] * mass, C, rtol=1e-9, atol=1e-9 * np.abs(C).max())
+
+
+if __name__ == "__main__":  # the numbers of the report: python tests/test_coefficients.py
+    for model, ld in [("ott", 1.0), ("alshaer2005", 1.0), ("short", 0.25), ("finite", 0.5)]:
+        worst = 0.0
+        for e in np.round(np.arange(0.1, 0.91, 0.1), 1):
+            d = dynamic_coefficients(model, ld, float(e))
+            K, C = fd_coefficients(model, ld, float(e))
+            ref = np.concatenate([K.ravel(), C.ravel()])
+            worst = max(worst, np.abs(np.array([d[k] for k in NAMES]) - ref).max() / np.abs(ref).max())
+        print(f"exact vs FD of film_forces, {model} (L/D = {ld:g}): {worst:.2e} of the largest")
+    worst = max(
+        abs(dynamic_coefficients("short", 0.25, float(e))[k] - short_closed_form(float(e))[k])
+        / max(abs(v) for v in short_closed_form(float(e)).values())
+        for e in EPS
+        for k in NAMES
+    )
+    print(f"short vs Friswell et al. closed forms, ε = 0.05 … 0.95: {worst:.2e} of the largest")
+    for ld in (0.25, 0.1, 0.05, 0.025):
+        print(f"finite vs short, L/D = {ld:g}: {_max_rel_diff('finite', ld, 'short', 0.25, NAMES):.3g}")
+    for ld in (2.0, 8.0, 32.0):
+        k = _max_rel_diff("finite", ld, "alshaer2005", 1.0, NAMES[:4])
+        c = _max_rel_diff("finite", ld, "alshaer2005", 1.0, NAMES[4:])
+        print(f"finite vs alshaer2005, L/D = {ld:g}: stiffness {k:.3g}, damping {c:.3g}")
