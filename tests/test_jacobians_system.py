@@ -225,3 +225,11 @@ def test_fallback_differentiates_a_tabulated_force_of_another_body():
         # central differences of a linear function: rounding only, ε^(2/3) ≈ 4e-11 relative
         assert abs(dQ[ip, ic] - (-slope)) <= 1e-8 * abs(slope) + 1e-9
         assert abs(dQ[ip + 1, ic]) <= 1e-9
+
+
+def test_fallback_elements_are_named():
+    from jointdyn.forces.element_jacobians import fallback_elements
+
+    model, _ = load_model(EXAMPLES / "engine_single_cylinder.toml")
+    assert fallback_elements(model.compile()) == ["gas"]
+    assert fallback_elements(slider_crank("alshaer2005").compile()) == []

@@ -256,3 +256,20 @@ def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt):
         _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt)
         n_fd += 1
     return n_fd
+
+
+def fallback_elements(system) -> list[str]:
+    """Names of the elements of a compiled system whose Jacobian comes from the finite-difference
+    fallback [T100] (journal elements use it additionally at e = 0 only): for a one-time notice."""
+    from .film_jacobians import HAS_JACOBIAN
+    from .film_models import film_model
+    from .journal import ClearanceJoint, JournalBearing
+
+    names = []
+    for name, e in zip(system.element_names, system.elements, strict=True):
+        if isinstance(e, ClearanceJoint):
+            continue
+        if isinstance(e, JournalBearing) and film_model(e.film).code in HAS_JACOBIAN:
+            continue
+        names.append(name)
+    return names
