@@ -257,6 +257,21 @@ def test_system_jacobian_of_a_rotor_on_the_bearing_gives_the_coefficients(model,
     assert np.allclose(-Jm[3:5, 3:5] * mass, C, rtol=1e-9, atol=1e-9 * np.abs(C).max())
 
 
+def test_equilibrium_agrees_with_the_bearing_table():
+    """The steady design table (``jointdyn.bearing``, its own closed forms) and the equilibrium
+    found from the film kernels agree for short and long (half-Sommerfeld) bearings."""
+    from jointdyn.bearing.design import bearing_table
+
+    eps = [0.2, 0.5, 0.8]
+    for table_model, film, ld in (("short", "short", 0.25), ("long", "alshaer2005", 1.0)):
+        t = bearing_table(table_model, "gumbel", ld, eps)
+        for i, e in enumerate(eps):
+            q = equilibrium(film, ld, e)
+            # two closed-form evaluations: rounding only (measured ≤ 2e-15)
+            assert abs(q["sommerfeld"] - t["sommerfeld"][i]) <= 1e-12 * q["sommerfeld"]
+            assert abs(math.degrees(q["attitude"]) - t["attitude_deg"][i]) <= 1e-10
+
+
 if __name__ == "__main__":  # the numbers of the report: python tests/test_coefficients.py
     for model, ld in [("ott", 1.0), ("alshaer2005", 1.0), ("short", 0.25), ("finite", 0.5)]:
         worst = 0.0
