@@ -1,0 +1,275 @@
+"""Exact Jacobians of the force elements, ∂Q/∂(q, q̇) and ∂Q/∂t (compiled) [T98–T100].
+
+The journal element (film and/or contact) is differentiated through its kinematics by the chain
+rule over the 12 local variables z = (q_i, q_j, q̇_i, q̇_j) [T98]; an element without an analytic
+Jacobian (spring–damper, tabulated force, a film model not in ``HAS_JACOBIAN``) is
+differentiated by central differences of its own contribution [T100], so every element is
+covered and the fallback is checked against the same references.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..layout import BODY_I, BODY_J, TYPE
+from .contact_jacobians import contact_jac, friction_jac
+from .contact_laws import KELVIN_VOIGT
+from .elements import NOUT, eval_forces
+from .film_jacobians import film_jac
+from .film_models import ALSHAER2005, FINITE, OTT, SHORT
+from .journal import (
+    CLR,
+    CONTACT,
+    CONTACT_P0,
+    CONTACT_P1,
+    FILM,
+    FILM_P0,
+    FILM_P1,
+    FRICTION,
+    FRICTION_P0,
+    FRICTION_P1,
+    H_ASP,
+    IN_CONTACT,
+    JOURNAL,
+    LEN,
+    MU,
+    NO_CONTACT,
+    NO_FILM,
+    NO_FRICTION,
+    ONSET_VEL,
+    R_B,
+    R_J,
+    TABLE,
+    V_MIN,
+    XI_GUARD,
+    journal_kinematics,
+)
+
+
+@njit(cache=True)
+def _pair_jac(DQ, F, DF, ajx, ajy, Daj, aix, aiy, Dai):
+    """Add ∂/∂z of the pair transfer [T8] (F on j at arm a_j, −F on i at arm a_i) to DQ (6, 12)."""
+    for c in range(12):
+        mj = ajx * DF[1, c] - ajy * DF[0, c] + Daj[0, c] * F[1] - Daj[1, c] * F[0]
+        mi = aix * DF[1, c] - aiy * DF[0, c] + Dai[0, c] * F[1] - Dai[1, c] * F[0]
+        DQ[3, c] += DF[0, c]
+        DQ[4, c] += DF[1, c]
+        DQ[5, c] += mj
+        DQ[0, c] -= DF[0, c]
+        DQ[1, c] -= DF[1, c]
+        DQ[2, c] -= mi
+
+
+@njit(cache=True)
+def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
+    """∂(Q_i, Q_j)/∂z of one journal element into DQ (6, 12), z = (q_i, q_j, q̇_i, q̇_j) [T98].
+
+    Returns 0, or 1 where the element is not differentiable analytically (e = 0, or a film
+    model without an exact Jacobian): the caller then uses finite differences."""
+    if ip[FILM] != NO_FILM and not (
+        ip[FILM] == OTT or ip[FILM] == ALSHAER2005 or ip[FILM] == SHORT or ip[FILM] == FINITE
+    ):
+        return 1
+    ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
+    c = r[CLR]
+    e = np.sqrt(ex * ex + ey * ey)
+    if e == 0.0:
+        return 1
+    ux = ex / e
+    uy = ey / e
+    tx = -uy
+    ty = ux
+    # ∂e/∂z and ∂ė/∂z [T14, T98]
+    De = np.zeros((2, 12))
+    De[0, 0] = -1.0
+    De[1, 1] = -1.0
+    De[0, 2] = siy
+    De[1, 2] = -six
+    De[0, 3] = 1.0
+    De[1, 4] = 1.0
+    De[0, 5] = -sjy
+    De[1, 5] = sjx
+    Ded = np.zeros((2, 12))
+    for k in range(6):
+        Ded[0, 6 + k] = De[0, k]
+        Ded[1, 6 + k] = De[1, k]
+    Ded[0, 2] = wi * six
+    Ded[1, 2] = wi * siy
+    Ded[0, 5] = -wj * sjx
+    Ded[1, 5] = -wj * sjy
+    tde = tx * De[0] + ty * De[1]
+    ude = ux * De[0] + uy * De[1]
+    Du = np.empty((2, 12))  # du = t (t·de)/e
+    Dt = np.empty((2, 12))  # dt = −u (t·de)/e
+    for k in range(12):
+        Du[0, k] = tx * tde[k] / e
+        Du[1, k] = ty * tde[k] / e
+        Dt[0, k] = -ux * tde[k] / e
+        Dt[1, k] = -uy * tde[k] / e
+    ue = ux * edx + uy * edy
+    te = tx * edx + ty * edy
+    uded = ux * Ded[0] + uy * Ded[1]
+    tded = tx * Ded[0] + ty * Ded[1]
+    Dwsum = np.zeros(12)
+    Dwsum[8] = 1.0
+    Dwsum[11] = 1.0
+    # arms: ∂s_i/∂z, ∂s_j/∂z
+    Dsi = np.zeros((2, 12))
+    Dsi[0, 2] = -siy
+    Dsi[1, 2] = six
+    Dsj = np.zeros((2, 12))
+    Dsj[0, 5] = -sjy
+    Dsj[1, 5] = sjx
+    F = np.empty(2)
+    DF = np.empty((2, 12))
+    xi = e / c
+    if ip[FILM] != NO_FILM:
+        xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
+        xi_f = min(xi, xi_cap, XI_GUARD)
+        Dxi = ude / c if xi < xi_cap and xi < XI_GUARD else np.zeros(12)
+        xid = ue / c
+        xi_om = xi_f * (wj + wi) - 2.0 * te / c
+        Dxid = (te * tde / e + uded) / c
+        DX = Dxi * (wj + wi) + xi_f * Dwsum - 2.0 * (-ue * tde / e + tded) / c
+        fr, ft, frx, fra, fro, ftx, fta, fto = film_jac(
+            ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
+        )
+        Dfr = frx * Dxi + fra * Dxid + fro * DX
+        Dft = ftx * Dxi + fta * Dxid + fto * DX
+        F[0] = fr * ux + ft * tx
+        F[1] = fr * uy + ft * ty
+        for k in range(12):
+            DF[0, k] = ux * Dfr[k] + fr * Du[0, k] + tx * Dft[k] + ft * Dt[0, k]
+            DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
+        # film force at the journal centre: a_j = s_j, a_i = s_i + e [T8, T15]
+        _pair_jac(DQ, F, DF, sjx, sjy, Dsj, six + ex, siy + ey, Dsi + De)
+    if ip[CONTACT] != NO_CONTACT:
+        delta = e - (c - r[H_ASP])
+        if delta > 0.0:
+            in_c = mem[IN_CONTACT] > 0.5
+            v0 = mem[ONSET_VEL] if in_c else max(ue, r[V_MIN])
+            fn, fnd, fndd = contact_jac(ip[CONTACT], delta, ue, v0, r[CONTACT_P0:CONTACT_P1])
+            if not in_c and ue > r[V_MIN] and ip[CONTACT] != KELVIN_VOIGT:
+                fndd = 0.0  # δ̇⁻ = δ̇ at an unrecorded onset: F = Kδⁿ(1 + χ) [T16]
+            Dfn = fnd * ude + fndd * (te * tde / e + uded)
+            vt = te + wj * r[R_J] - wi * r[R_B]
+            mu = 0.0
+            dmu = 0.0
+            if ip[FRICTION] != NO_FRICTION:
+                mu, dmu = friction_jac(ip[FRICTION], vt, r[FRICTION_P0:FRICTION_P1])
+            Dvt = -ue * tde / e + tded
+            Dvt[11] += r[R_J]
+            Dvt[8] -= r[R_B]
+            Dmfn = mu * Dfn + fn * dmu * Dvt
+            F[0] = -fn * ux - mu * fn * tx
+            F[1] = -fn * uy - mu * fn * ty
+            for k in range(12):
+                DF[0, k] = -ux * Dfn[k] - fn * Du[0, k] - tx * Dmfn[k] - mu * fn * Dt[0, k]
+                DF[1, k] = -uy * Dfn[k] - fn * Du[1, k] - ty * Dmfn[k] - mu * fn * Dt[1, k]
+            cx = r[R_J] * ux
+            cy = r[R_J] * uy
+            Dc = r[R_J] * Du
+            _pair_jac(DQ, F, DF, sjx + cx, sjy + cy, Dsj + Dc, six + ex + cx, siy + ey + cy, Dsi + De + Dc)
+    return 0
+
+
+@njit(cache=True)
+def _scatter(DQ, bi, bj, dQdq, dQdqd):
+    """Add the local (6, 12) block of bodies (i, j) to the global ∂Q/∂q, ∂Q/∂q̇ (ground skipped)."""
+    for a in range(2):
+        ba = bi if a == 0 else bj
+        if ba < 0:
+            continue
+        for b in range(2):
+            bb = bi if b == 0 else bj
+            if bb < 0:
+                continue
+            for r in range(3):
+                for s in range(3):
+                    dQdq[3 * ba + r, 3 * bb + s] += DQ[3 * a + r, 3 * b + s]
+                    dQdqd[3 * ba + r, 3 * bb + s] += DQ[3 * a + r, 6 + 3 * b + s]
+
+
+@njit(cache=True)
+def _element_q(t, q, qd, mem, fint, freal, tables, k, Qk, out):
+    Qk[:] = 0.0
+    eval_forces(t, q, qd, mem[k : k + 1], fint[k : k + 1], freal[k : k + 1], tables, Qk, out)
+
+
+@njit(cache=True)
+def _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt):
+    """Central differences of element k's generalised force [T100] (the fallback)."""
+    n = q.shape[0]
+    Qp = np.zeros(n)
+    Qm = np.zeros(n)
+    out = np.zeros((1, NOUT))
+    qw = q.copy()
+    qdw = qd.copy()
+    for col in range(n):  # every coordinate: an element may read other bodies (a tabulated force)
+        for which in range(2):
+            base = q[col] if which == 0 else qd[col]
+            h = 6.055454452393343e-06 * max(abs(base), 1e-3 if which == 0 else 1.0)  # ε^(1/3)
+            if which == 0:
+                qw[col] = base + h
+                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qp, out)
+                qw[col] = base - h
+                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qm, out)
+                qw[col] = base
+                for i in range(n):
+                    dQdq[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
+            else:
+                qdw[col] = base + h
+                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qp, out)
+                qdw[col] = base - h
+                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qm, out)
+                qdw[col] = base
+                for i in range(n):
+                    dQdqd[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
+    h = 6.055454452393343e-06 * max(abs(t), 1e-3)
+    _element_q(t + h, q, qd, mem, fint, freal, tables, k, Qp, out)
+    _element_q(t - h, q, qd, mem, fint, freal, tables, k, Qm, out)
+    for i in range(n):
+        dQdt[i] += (Qp[i] - Qm[i]) / (2.0 * h)
+
+
+@njit(cache=True)
+def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt):
+    """∂Q/∂q, ∂Q/∂q̇ (n, n) and ∂Q/∂t (n,) of all force elements (zeroed here; gravity is
+    constant). Returns the number of elements differentiated by the fallback [T98–T100]."""
+    dQdq[:, :] = 0.0
+    dQdqd[:, :] = 0.0
+    dQdt[:] = 0.0
+    DQ = np.empty((6, 12))
+    n_fd = 0
+    for k in range(fint.shape[0]):
+        if fint[k, TYPE] == JOURNAL:
+            DQ[:, :] = 0.0
+            if (
+                journal_jacobian(
+                    q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, DQ
+                )
+                == 0
+            ):
+                _scatter(DQ, fint[k, BODY_I], fint[k, BODY_J], dQdq, dQdqd)
+                continue
+        _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt)
+        n_fd += 1
+    return n_fd
+
+
+def fallback_elements(system) -> list[str]:
+    """Names of the elements of a compiled system whose Jacobian comes from the finite-difference
+    fallback [T100] (journal elements use it additionally at e = 0 only): for a one-time notice."""
+    from .film_jacobians import HAS_JACOBIAN
+    from .film_models import film_model
+    from .journal import ClearanceJoint, JournalBearing
+
+    names = []
+    for name, e in zip(system.element_names, system.elements, strict=True):
+        if isinstance(e, ClearanceJoint):
+            continue
+        if isinstance(e, JournalBearing) and film_model(e.film).code in HAS_JACOBIAN:
+            continue
+        names.append(name)
+    return names
