@@ -146,6 +146,14 @@ def test_slider_crank_system_jacobian(joint):
     assert err <= TOL, f"{joint}: {err:.3g} (reference noise {noise:.3g})"
 
 
+@pytest.mark.parametrize("bushing", ["rod", "slider"])
+def test_slider_crank_with_shear_torques(bushing):
+    """The film's shear torques [T75] are differentiated too (either body carrying the bushing)."""
+    system = slider_crank("alshaer2005", shear=True, bushing=bushing).compile()
+    err, noise = check(system, 0.5 * REV)
+    assert err <= TOL, f"shear, bushing in {bushing}: {err:.3g} (reference noise {noise:.3g})"
+
+
 def test_dry_joint_states_in_contact_are_covered():
     system = slider_crank("dry").compile()
     P = system.packed(0.0)

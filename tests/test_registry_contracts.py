@@ -336,3 +336,73 @@ def test_solver_integrates_a_pendulum(name):
     scale = 2.0 * 9.81 * 0.25  # m g ℓ_cm [J]
     assert np.abs(energy - energy[0]).max() < 1e-5 * scale  # tolerance-level energy error
     assert res.drift.max() < 1e-6  # projection: ~1e-12 m; Baumgarte (scipy path): ~1e-8 m
+
+
+# ------------------------------------------------------------------------ jacobians (optional)
+def test_exact_jacobians_are_declared_where_the_system_jacobian_uses_them():
+    """A film model with a ``jacobian`` is differentiated exactly in the system Jacobian, one
+    without falls back to finite differences: the two lists must be the same."""
+    from jointdyn.forces.film_jacobians import HAS_JACOBIAN
+
+    declared = {cls.code for cls in FILM_MODELS.values() if getattr(cls, "jacobian", None) is not None}
+    assert declared == set(HAS_JACOBIAN)
+
+
+def _central(f, x, h):
+    return (np.array(f(x + h)) - np.array(f(x - h))) / (2 * h)
+
+
+@pytest.mark.parametrize("name", [n for n, c in FILM_MODELS.items() if getattr(c, "jacobian", None)])
+def test_film_jacobian_contract(name):
+    """Forces bit-identical to the kernel; derivatives = central differences at interior states
+    (h = 1e-6 of the scale: truncation ~1e-12, round-off ~1e-10 relative; bound 1e-6 of the
+    row's scale, the issue's criterion)."""
+    from jointdyn.forces.film_jacobians import film_jac
+
+    m, p, tab = _film(name)
+    jac = type(m).jacobian
+    rng = np.random.default_rng(9)
+    for xi, a, b in zip(*_states(rng, 60, xi_max=0.9)):
+        args = (MU, R, L, C, p, tab)
+        J = jac(xi, a, b, *args)
+        assert J[:2] == film_force(m.code, xi, a, b, *args) and J == film_jac(m.code, xi, a, b, *args)
+        dxi = _central(lambda x: film_force(m.code, x, a, b, *args), xi, 1e-6)
+        da = _central(lambda x: film_force(m.code, xi, x, b, *args), a, 1e-6 * math.hypot(a, b))
+        db = _central(lambda x: film_force(m.code, xi, a, x, *args), b, 1e-6 * math.hypot(a, b))
+        exact = np.array([[J[2], J[3], J[4]], [J[5], J[6], J[7]]])
+        fd = np.column_stack([dxi, da, db])
+        scale = np.abs(fd).max(axis=1, keepdims=True) * np.array([1.0, math.hypot(a, b), math.hypot(a, b)])
+        assert np.all(
+            np.abs((exact - fd) * np.array([1.0, math.hypot(a, b), math.hypot(a, b)]))
+            <= 1e-6 * scale + 1e-300
+        )
+
+
+@pytest.mark.parametrize("name", [n for n, c in CONTACT_LAWS.items() if getattr(c, "jacobian", None)])
+def test_contact_jacobian_contract(name):
+    law = CONTACT_LAWS[name].example()
+    p = np.zeros(CONTACT_WIDTH)
+    p[: len(law.PARAMS)] = params_of(law)
+    rng = np.random.default_rng(10)
+    for _ in range(60):
+        d, v, v0 = 10.0 ** rng.uniform(-7, -5), 10.0 ** rng.uniform(-2, 0), 10.0 ** rng.uniform(-1, 0)
+        F, dd, dv = type(law).jacobian(d, v, v0, p)
+        assert F == contact_force(law.code, d, v, v0, p)
+        fd_d = _central(lambda x: contact_force(law.code, x, v, v0, p), d, 1e-6 * d)
+        fd_v = _central(lambda x: contact_force(law.code, d, x, v0, p), v, 1e-6 * v)
+        # central differences at h = 1e-6 of the argument: ~1e-10 relative
+        assert abs(dd - fd_d) <= 1e-6 * abs(fd_d) + 1e-9 * abs(F) / d
+        assert abs(dv - fd_v) <= 1e-6 * abs(fd_v) + 1e-9 * abs(F) / v
+
+
+@pytest.mark.parametrize("name", [n for n, c in FRICTION_LAWS.items() if getattr(c, "jacobian", None)])
+def test_friction_jacobian_contract(name):
+    law = FRICTION_LAWS[name].example()
+    p = np.zeros(FRICTION_WIDTH)
+    p[: len(law.PARAMS)] = params_of(law)
+    for vt in np.concatenate([-np.logspace(-5, 0, 20), np.logspace(-5, 0, 20)]):
+        mu, dmu = type(law).jacobian(vt, p)
+        assert mu == friction_coefficient(law.code, vt, p)
+        h = 1e-7 * abs(vt)
+        fd = (friction_coefficient(law.code, vt + h, p) - friction_coefficient(law.code, vt - h, p)) / (2 * h)
+        assert abs(dmu - fd) <= 1e-5 * abs(fd) + 1e-6 * law.coefficient / abs(vt)

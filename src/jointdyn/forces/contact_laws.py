@@ -204,3 +204,14 @@ def journal_bearing_stiffness(R_bearing, R_journal, E_bearing, nu_bearing, E_jou
     )
     s = (1 - nu_bearing**2) / E_bearing + (1 - nu_journal**2) / E_journal
     return (4.0 / 3.0) / s * math.sqrt(R_bearing * R_journal / (R_bearing - R_journal))
+
+
+# -- optional capability: exact Jacobians [T96] ----------------------------------------------------
+# ``jacobian(delta, delta_dot, delta_dot0, p) -> (F, ∂F/∂δ, ∂F/∂δ̇)``
+from . import contact_jacobians as _jac  # noqa: E402  (it reads the slots above)
+
+Hertz.jacobian = _jac.hertz_jac  # type: ignore[attr-defined]
+LankaraniNikravesh.jacobian = _jac.lankarani_nikravesh_jac  # type: ignore[attr-defined]
+HuntCrossley.jacobian = _jac.hunt_crossley_jac  # type: ignore[attr-defined]
+Flores.jacobian = _jac.flores_jac  # type: ignore[attr-defined]
+KelvinVoigt.jacobian = _jac.kelvin_voigt_jac  # type: ignore[attr-defined]

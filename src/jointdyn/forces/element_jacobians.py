@@ -13,11 +13,12 @@ import numpy as np
 from numba import njit
 
 from ..layout import BODY_I, BODY_J, TYPE
-from .contact_jacobians import contact_jac, friction_jac
+from .contact_jacobians import contact_jac
 from .contact_laws import KELVIN_VOIGT
 from .elements import NOUT, eval_forces
 from .film_jacobians import film_jac
 from .film_models import ALSHAER2005, FINITE, OTT, SHORT
+from .friction_jacobians import friction_jac
 from .journal import (
     CLR,
     CONTACT,
@@ -40,6 +41,7 @@ from .journal import (
     ONSET_VEL,
     R_B,
     R_J,
+    SHEAR,
     TABLE,
     V_MIN,
     XI_GUARD,
@@ -144,6 +146,19 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
             DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
         # film force at the journal centre: a_j = s_j, a_i = s_i + e [T8, T15]
         _pair_jac(DQ, F, DF, sjx, sjy, Dsj, six + ex, siy + ey, Dsi + De)
+        if ip[SHEAR] != 0:
+            # shear torques M_J = −M_C − (e/2)F_t, M_B' = M_C + (e/2)F_t with
+            # M_C = K(ω_J − ω_B)/√(1−ξ_f²), K = 2πμR³L/c [T75]
+            kc = 2.0 * np.pi * r[MU] * r[R_J] ** 3 * r[LEN] / c
+            sq = np.sqrt((1.0 - xi_f) * (1.0 + xi_f))
+            dw = wj - wi
+            Dmc = kc * dw * xi_f / sq**3 * Dxi
+            Dmc[11] += kc / sq
+            Dmc[8] -= kc / sq
+            Dhalf = 0.5 * (ude * ft + e * Dft)
+            for k in range(12):
+                DQ[5, k] += -Dmc[k] - Dhalf[k]
+                DQ[2, k] += Dmc[k] + Dhalf[k]
     if ip[CONTACT] != NO_CONTACT:
         delta = e - (c - r[H_ASP])
         if delta > 0.0:

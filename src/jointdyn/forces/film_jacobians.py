@@ -319,4 +319,6 @@ def film_jac(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
 
 
 HAS_JACOBIAN = (OTT, ALSHAER2005, SHORT, FINITE)
+"""codes ``film_jac`` differentiates (the registry entries with a ``jacobian``, checked by the
+registry contract tests)"""
 """film-model codes with an analytic Jacobian in :func:`film_jac`"""

@@ -353,3 +353,15 @@ def film_forces(
         "Fx": fr * np.cos(g) - ft * np.sin(g),
         "Fy": fr * np.sin(g) + ft * np.cos(g),
     }  # [T27]
+
+
+# -- optional capability: exact Jacobians [T90–T97] ------------------------------------------------
+# ``jacobian(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft, ∂Fr/∂ξ, ∂Fr/∂ξ̇, ∂Fr/∂(ξΩ),
+# ∂Ft/∂ξ, ∂Ft/∂ξ̇, ∂Ft/∂(ξΩ))``; a model without one is differentiated by finite differences in the
+# system Jacobian (``element_jacobians.fallback_elements`` names such elements).
+from . import film_jacobians as _jac  # noqa: E402  (it reads the codes above)
+
+Ott.jacobian = _jac.ott_jac  # type: ignore[attr-defined]
+Alshaer2005.jacobian = _jac.pi_film_jac  # type: ignore[attr-defined]
+Short.jacobian = _jac.short_jac  # type: ignore[attr-defined]
+Finite.jacobian = _jac.finite_jac  # type: ignore[attr-defined]

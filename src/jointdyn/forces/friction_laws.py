@@ -109,3 +109,11 @@ check_codes(FRICTION_LAWS, "friction law")
 FRICTION_WIDTH = block_width(FRICTION_LAWS)
 C_MU, C_VREG = Layout(Coulomb.PARAMS).slots(*Coulomb.PARAMS)
 A_MU, A_V0, A_V1 = Layout(Ambrosio.PARAMS).slots(*Ambrosio.PARAMS)
+
+
+# -- optional capability: exact Jacobians [T97] ----------------------------------------------------
+# ``jacobian(vt, p) -> (μ_eff, dμ_eff/dv_t)``
+from . import friction_jacobians as _jac  # noqa: E402  (it reads the slots above)
+
+Coulomb.jacobian = _jac.coulomb_jac  # type: ignore[attr-defined]
+Ambrosio.jacobian = _jac.ambrosio_jac  # type: ignore[attr-defined]
