@@ -294,3 +294,17 @@ if __name__ == "__main__":  # the numbers of the report: python tests/test_coeff
         k = _max_rel_diff("finite", ld, "alshaer2005", 1.0, NAMES[:4])
         c = _max_rel_diff("finite", ld, "alshaer2005", 1.0, NAMES[4:])
         print(f"finite vs alshaer2005, L/D = {ld:g}: stiffness {k:.3g}, damping {c:.3g}")
+
+
+def test_bearing_table_carries_the_dynamic_coefficients_of_its_film():
+    """The design table adds k, c and Lund's threshold where the table's film has a dynamic
+    kernel (Gümbel films), from the same exact Jacobians; none for Swift–Stieber films."""
+    from jointdyn.bearing.design import COEFFICIENT_COLUMNS, bearing_table
+    from jointdyn.coefficients import dynamic_coefficients
+
+    tab = bearing_table("short", "gumbel", 0.25, [0.3, 0.7])
+    for i, eps in enumerate((0.3, 0.7)):
+        ref = dynamic_coefficients("short", 0.25, eps)
+        for c in COEFFICIENT_COLUMNS:
+            assert tab[c][i] == ref[c]
+    assert not set(COEFFICIENT_COLUMNS) & set(bearing_table("long", "reynolds", 1.0, [0.5]))

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import csv
+import io
 import math
 import sys
 from pathlib import Path
@@ -46,7 +47,7 @@ def bearing_table_cmd(
     from rich.console import Console
     from rich.markup import escape
 
-    from .design import COLUMNS, bearing_table, equilibrium
+    from .design import bearing_table, equilibrium
 
     console = Console(stderr=True)
     try:
@@ -62,13 +63,17 @@ def bearing_table_cmd(
     except (ValueError, OSError) as err:
         console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
         raise typer.Exit(2) from None
-    fh = open(out, "w", newline="") if out else sys.stdout
-    w = csv.writer(fh)
-    w.writerow(COLUMNS)
+    buf = io.StringIO()
+    w = csv.writer(buf)
+    w.writerow(list(tab))  # COLUMNS, then the dynamic coefficients where the film has them
     for i in range(len(tab["eps"])):
-        w.writerow([f"{tab[c][i]:.6g}" for c in COLUMNS])
+        w.writerow([f"{tab[c][i]:.6g}" for c in tab])
     if out:
-        fh.close()
+        from ..atomic import write_text
+
+        write_text(out, buf.getvalue())
+    else:
+        sys.stdout.write(buf.getvalue())
     if op is not None:
         units = {
             "eps": "-",

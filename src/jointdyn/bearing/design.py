@@ -35,6 +35,15 @@ COLUMNS = (
     "theta_end_deg",
 )
 MODELS = ("finite", "long", "short")
+#: dynamic-coefficient columns [T107–T108], added to the table where the film has a kernel twin
+COEFFICIENT_COLUMNS = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "critical_mass", "whirl_ratio")
+#: (table model, cavitation) -> the film model whose kernel is the same film (coefficients from
+#: its exact Jacobian); Swift–Stieber films have no dynamic kernel yet
+COEFFICIENT_MODEL = {
+    ("short", "gumbel"): "short",
+    ("long", "gumbel"): "alshaer2005",
+    ("finite", "gumbel"): "finite",
+}
 #: largest eccentricity ratio the equilibrium search may use [-]
 EPS_MAX = 0.999
 
@@ -114,7 +123,9 @@ def steady_quantities(model: str, cavitation: str, ld: float, eps: float, mesh=D
 
 
 def bearing_table(model: str, cavitation: str, ld: float, eps_list, mesh=DEFAULT_MESH) -> dict:
-    """Steady design table [T77]: dict column → array (``COLUMNS``), one entry per ε.
+    """Steady design table [T77]: dict column → array (``COLUMNS``), one entry per ε; for the
+    films in ``COEFFICIENT_MODEL`` also the dynamic coefficients and Lund's stability threshold
+    (``COEFFICIENT_COLUMNS``, dimensionless k = Kc/W, c = Ccω/W, M̄ = mcω²/W; [T107–T108]).
 
     model       "finite" (2-D Reynolds [T70–T72]), "long" (L/D → ∞ [T78]) or "short" (Ocvirk [T79])
     cavitation  "reynolds" (Swift–Stieber, as Raimondi–Boyd) or "gumbel" (half-Sommerfeld)
@@ -131,7 +142,14 @@ def bearing_table(model: str, cavitation: str, ld: float, eps_list, mesh=DEFAULT
         d = steady_quantities(model, cavitation, float(ld), float(e[k]), mesh, cav)
         cav = d.get("cavitated")
         rows[k] = _row(float(e[k]), float(ld), d)
-    return {c: np.array([r[c] for r in rows]) for c in COLUMNS}
+    out = {c: np.array([r[c] for r in rows]) for c in COLUMNS}
+    twin = COEFFICIENT_MODEL.get((model, cavitation))
+    if twin is not None:
+        from ..coefficients import dynamic_coefficients
+
+        coef = [dynamic_coefficients(twin, float(ld), float(x)) for x in e]
+        out.update({c: np.array([d[c] for d in coef]) for c in COEFFICIENT_COLUMNS})
+    return out
 
 
 def equilibrium(
