@@ -366,5 +366,10 @@ app.command("bearing-table")(bearing_table_cmd)
 __all__ = ["app", "cli_files", "main"]
 
 
+from .cli_chaos import register as _register_chaos  # noqa: E402
+
+_register_chaos(app)
+
+
 def main():  # pragma: no cover
     app()

@@ -114,8 +114,20 @@ def resolve_solver(system: System, name: str) -> str:
     return "rodas4" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
 
 
-def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) -> Results:
+def simulate(
+    system: System,
+    config: SimConfig,
+    progress=None,
+    chunks: int = 1,
+    *,
+    t0: float = 0.0,
+    y0: np.ndarray | None = None,
+    mem0: np.ndarray | None = None,
+) -> Results:
     """Integrate ``system`` from its assembled initial state over [0, config.t_end].
+
+    ``t0`` [s], ``y0`` and ``mem0`` restart from another state: the run then covers
+    [t0, t0 + config.t_end] (the time origin matters for driven systems).
 
     The run is split into ``chunks`` consecutive calls of the compiled integrator (state,
     element memory and step size carried over); ``progress(fraction)`` is called after each.
@@ -126,11 +138,13 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
     runner, projects, _ = SOLVERS[solver]
     a = config.baumgarte if config.baumgarte is not None else (0.0 if projects else 1000.0)
     P = system.packed(a)
-    t_out = np.linspace(0.0, config.t_end, config.n_out)
+    t_out = np.linspace(t0, t0 + config.t_end, config.n_out)
     parts = [p for p in np.array_split(np.arange(1, config.n_out), max(1, int(chunks))) if len(p)]
-    Ys, MEMs = [system.y0[None, :].copy()], [system.mem0[None].copy()]
+    y = np.array(system.y0 if y0 is None else y0, dtype=float)
+    mem = np.array(system.mem0 if mem0 is None else mem0, dtype=float)
+    Ys, MEMs = [y[None, :].copy()], [mem[None].copy()]
     stats = np.zeros(4, dtype=np.int64)
-    y, mem, t, h = system.y0.copy(), system.mem0.copy(), 0.0, config.first_step
+    t, h = t0, config.first_step
     status, t_reached = OK, 0.0
     t0 = time.perf_counter()
     for idx in parts:
@@ -160,7 +174,7 @@ def simulate(system: System, config: SimConfig, progress=None, chunks: int = 1) 
             break
         y, mem, t = y_fin.copy(), mem_fin.copy(), tc[-1]
         if progress is not None:
-            progress(t / config.t_end)
+            progress((t - t0) / config.t_end)
     wall = time.perf_counter() - t0
     Y = np.ascontiguousarray(np.concatenate(Ys))
     MEM = np.ascontiguousarray(np.concatenate(MEMs))
