@@ -1,0 +1,243 @@
+"""Chaos tools: Lyapunov exponents against closed forms, sections, spectra, ensembles, CLI."""
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from jointdyn.chaos.ensemble import band, convergence, revolution_stats
+from jointdyn.chaos.lyapunov import batch_stderr, benettin, system_lyapunov
+from jointdyn.chaos.poincare import journal_relative_state, plane_crossing, stroboscopic
+from jointdyn.chaos.spectra import amplitude_spectrum, run_spectra
+from jointdyn.cli import app
+from jointdyn.config import load_model
+from jointdyn.models import slider_crank as sc
+from jointdyn.runs import run_slider_crank
+
+EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
+OMEGA_N = 2 * math.pi  # [rad/s] of examples/oscillator_*.toml
+ZETA = 0.05  # [-] of examples/oscillator_damped.toml
+runner = CliRunner()
+
+
+def _oscillator(name):
+    model, _ = load_model(EXAMPLES / name)
+    return model.compile()
+
+
+@pytest.mark.parametrize("time_scale", [1 / OMEGA_N, 0.3])
+def test_damped_oscillator_exponent_is_minus_zeta_omega(time_scale):
+    # both exponents of m ẍ + d ẋ + k x = 0 are −ζω_n [T129]; tolerance 1 % is the issue's
+    # requirement (measured: 0.04 % with the matched time scale, ≈ 0.7 % with 0.3 s, the
+    # bounded oscillation of the weighted norm over 200 s)
+    r = system_lyapunov(
+        _oscillator("oscillator_damped.toml"),
+        tau=1.0,
+        n_segments=200,
+        time_scale=time_scale,
+        discard_segments=0,
+    )
+    assert r.exponent == pytest.approx(-ZETA * OMEGA_N, rel=0.01)
+
+
+@pytest.mark.parametrize("time_scale", [1 / OMEGA_N, 0.3])
+def test_undamped_oscillator_exponent_is_zero(time_scale):
+    # the flow is a rotation in (x, ẋ/ω_n): λ = 0 [T129]; the issue's bound is 1e-3·ω_n
+    # (measured |λ| ≈ 2e-7 1/s: integration error only)
+    r = system_lyapunov(
+        _oscillator("oscillator_undamped.toml"),
+        tau=1.0,
+        n_segments=200,
+        time_scale=time_scale,
+        discard_segments=0,
+    )
+    assert abs(r.exponent) < 1e-3 * OMEGA_N
+
+
+def test_benettin_core_on_a_linear_map_with_known_stretching():
+    # ẋ = diag(a, b) x over τ exactly: λ₁ = max(a, b) for a generic start [T125]
+    a, b = 0.7, -1.3
+
+    def advance(x, t0, t1):
+        return x * np.exp(np.array([a, b]) * (t1 - t0))
+
+    r = benettin(
+        advance,
+        lambda u, v: float(np.linalg.norm(v - u)),
+        lambda u, v, f: u + f * (v - u),
+        np.zeros(2),  # the fixed point: the deviation evolves exactly linearly
+        np.array([0.6e-8, 0.8e-8]),
+        0.0,
+        0.5,
+        100,
+        1e-8,
+        discard_segments=20,
+    )
+    assert r.exponent == pytest.approx(
+        a, rel=1e-9
+    )  # the b-component decays by e^-1 per segment: gone after 20
+    assert r.stderr < 1e-9
+
+
+def test_batch_stderr_of_white_noise():
+    # white noise of unit variance, 10 000 samples: s.e. of the mean = 1/100 (±10 % for 20 batches)
+    x = np.random.default_rng(3).standard_normal(10_000)
+    se, b = batch_stderr(x, 20)
+    assert b == 20 and se == pytest.approx(0.01, rel=0.35)  # χ² spread of a 20-batch estimate: ±0.32 at 2σ
+
+
+def test_sections_of_a_sine_are_exact():
+    t = np.linspace(0, 10, 20001)
+    w = 2.0
+    series = {"x": np.sin(w * t), "v": w * np.cos(w * t)}
+    sec = stroboscopic(series, w * t, math.pi / 2, t)  # every period at phase π/2: x = 1, v = 0
+    assert np.allclose(sec.values["x"], 1.0, atol=1e-12) and np.allclose(sec.values["v"], 0.0, atol=1e-9)
+    pc = plane_crossing(series, "x", 0.0, t, direction=1)  # upward zeros at t = kπ
+    assert np.allclose(pc.t, np.pi * np.arange(1, pc.t.size + 1), atol=1e-7)  # linear interpolation: O(h²)
+    assert np.allclose(pc.values["v"], w, rtol=1e-6)
+
+
+def test_journal_relative_velocity_matches_finite_differences():
+    res, _, _ = run_slider_crank("alshaer2005", 1.0, samples_per_rev=7200, rtol=1e-9, atol=1e-13)
+    st = journal_relative_state(res, "piston_pin")
+    assert np.allclose(st["ex"], res.element("piston_pin", "ex"), atol=1e-15)
+    fd = np.gradient(st["ey"], res.t)
+    # central differences on h = T/7200: error h²/6·|e'''| ≈ 1e-6 of the peak rate
+    scale = np.abs(st["ey_dot"]).max()
+    assert np.abs(fd[5:-5] - st["ey_dot"][5:-5]).max() < 1e-4 * scale
+
+
+def test_spectrum_of_the_perfect_slider_crank_matches_the_kinematics():
+    # slider x(φ) = r cos φ + √(l² − r² sin² φ): the rod term has only even harmonics, so
+    # ẍ has harmonic 1 of amplitude r ω² exactly and no odd harmonics ≥ 3 [T130]; harmonic 2
+    # from the Fourier coefficient of the exact x(φ) by a 4096-point trapezoidal rule (spectral)
+    res, _, _ = run_slider_crank("perfect", 4.0, samples_per_rev=720, rtol=1e-11, atol=1e-13)
+    sp = run_spectra(res, transient_revs=1)
+    h, a = sp["harmonic"], sp["slider_acceleration"]
+    r, l, w = sc.CRANK_LENGTH, sc.ROD_LENGTH, sc.SPEED
+    assert a[h == 1][0] == pytest.approx(r * w * w, rel=1e-7)  # integration error of q̈, rtol 1e-11
+    assert a[h == 3][0] < 1e-7 * r * w * w and a[h == 5][0] < 1e-7 * r * w * w
+    phi = np.linspace(0, 2 * np.pi, 4096, endpoint=False)
+    x = r * np.cos(phi) + np.sqrt(l * l - (r * np.sin(phi)) ** 2)
+    a2 = 4 * w * w * 2 * abs(np.mean(x * np.exp(-2j * phi)))
+    assert a[h == 2][0] == pytest.approx(a2, rel=1e-7)
+    assert np.all(a[(h % 1) != 0] < 1e-7 * r * w * w)  # periodic: nothing between harmonics
+
+
+def test_amplitude_spectrum_of_a_cosine():
+    n, revs = 720, 3
+    x = 2.5 + 4.0 * np.cos(2 * np.pi * 5 * np.arange(n * revs) / n + 0.3)
+    h, a = amplitude_spectrum(x, revs)
+    assert a[0] == pytest.approx(2.5) and a[h == 5][0] == pytest.approx(4.0)
+    assert np.all(a[(h != 0) & (h != 5)] < 1e-12)
+
+
+def test_revolution_stats_of_the_periodic_perfect_joint():
+    res, _, summ = run_slider_crank("perfect", 3.0, samples_per_rev=720)
+    st = revolution_stats(res, transient_revs=1, element=None)
+    assert st["peak_moment"].size == 2
+    assert np.allclose(st["peak_moment"], summ["peak_moment"], rtol=1e-6)  # periodic: every revolution alike
+    assert np.allclose(st["rms_moment"], st["rms_moment"][0], rtol=1e-6)
+    with pytest.raises(ValueError, match="transient_revs"):
+        revolution_stats(res, transient_revs=3, element=None)
+
+
+def test_revolution_stats_count_impacts_of_the_dry_joint():
+    res, _, summ = run_slider_crank("dry", 3.0, samples_per_rev=720, rtol=1e-8, atol=1e-11)
+    st = revolution_stats(res, 0)
+    assert st["impacts"].sum() == summ["impacts"]  # the counter is exact over accepted steps
+    assert st["max_penetration"].max() <= summ["max_penetration"] + 1e-15  # samples ⊂ accepted steps
+
+
+def test_convergence_check_detects_a_shift():
+    rng = np.random.default_rng(0)
+    same = {"a": {"m": rng.normal(0, 1, 400)}, "b": {"m": rng.normal(0, 1, 400)}}
+    moved = {"a": {"m": rng.normal(0, 1, 400)}, "b": {"m": rng.normal(1.0, 1, 400)}}
+    assert convergence(same)["m"]["converged"]
+    c = convergence(moved)["m"]
+    assert not c["converged"] and c["z"] > 5  # a 1σ shift with n = 400: z ≈ 0.5/0.06 ≈ 8
+    b = band(np.arange(101.0))
+    assert (b["p5"], b["median"], b["p95"]) == (5.0, 50.0, 95.0)
+
+
+def test_cli_lyapunov_on_a_model_file(tmp_path):
+    out = tmp_path / "lyap"
+    args = ["lyapunov", str(EXAMPLES / "oscillator_damped.toml"), "--tau", "1", "--segments", "100"]
+    r = runner.invoke(app, [*args, "--time-scale", str(1 / OMEGA_N), "--discard", "0", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    s = json.loads((out / "summary.json").read_text())
+    assert s["largest_lyapunov_exponent"] == pytest.approx(-ZETA * OMEGA_N, rel=0.01)  # the issue's 1 %
+    assert (out / "lyapunov.png").exists() and (out / "lyapunov.csv").exists()
+    r = runner.invoke(app, ["lyapunov", str(EXAMPLES / "oscillator_damped.toml"), "--out", str(out)])
+    assert r.exit_code == 2 and "--tau" in r.output
+
+
+def test_cli_poincare_and_spectrum(tmp_path):
+    out = tmp_path / "dry"
+    r = runner.invoke(app, ["run", "slider-crank", "--joint", "dry", "--revs", "6", "--out", str(out)])
+    assert r.exit_code == 0, r.output
+    for cmd in (
+        ["poincare", str(out), "--transient-revs", "1"],
+        ["spectrum", str(out), "--transient-revs", "1"],
+    ):
+        r = runner.invoke(app, cmd)
+        assert r.exit_code == 0, r.output
+    rows = (out / "poincare.csv").read_text().splitlines()
+    assert rows[0].startswith("t,ex_over_c") and len(rows) == 1 + 6  # revolutions 1…6 at angle 0
+    assert (out / "spectrum.png").exists()
+
+
+def test_cli_bifurcation_small(tmp_path):
+    f = tmp_path / "b.toml"
+    f.write_text(
+        '[base]\njoint = "dry"\nrtol = 1e-7\natol = 1e-10\n[bifurcation]\nparameter = "clearance"\n'
+        "values = [2e-4, 4e-4]\ntransient_revs = 1\nrecord_revs = 2\n"
+    )
+    out = tmp_path / "bif"
+    r = runner.invoke(app, ["bifurcation", str(f), "--out", str(out), "--workers", "1"])
+    assert r.exit_code == 0, r.output
+    import xarray as xr
+
+    ds = xr.load_dataset(out / "bifurcation.nc", engine="h5netcdf")
+    assert ds["ex_over_c"].shape == (2, 2) and np.isfinite(ds["ex_over_c"]).all()
+    assert (ds["error"] == "").all() and (out / "bifurcation.png").exists()
+    f.write_text('[bifurcation]\nparameter = "colour"\nvalues = [1.0]\n')
+    r = runner.invoke(app, ["bifurcation", str(f), "--out", str(out)])
+    assert r.exit_code == 2 and "clearance" in r.output
+
+
+@pytest.mark.slow
+def test_ueda_oscillator_matches_the_published_exponent():
+    # Ueda (1979) ẍ + 0.05 ẋ + x³ = 7.5 cos t: λ₁ = 0.0999 1/s (Sprott, Chaos and Time-Series
+    # Analysis, 2003, p. 429; 4th-order Runge–Kutta, h = 0.001) [T129]. Ours over 3000
+    # forcing periods; tolerance 3 standard errors of our batch means (measured s.e. ≈ 0.003)
+    from jointdyn.chaos.lyapunov import ode_lyapunov
+
+    def f(t, x):
+        return [x[1], -(x[0] ** 3) - 0.05 * x[1] + 7.5 * math.cos(t)]
+
+    r = ode_lyapunov(f, [2.5, 0.0], 2 * math.pi, 3000, transient=200 * math.pi, rtol=1e-10, atol=1e-12)
+    assert abs(r.exponent - 0.0999) < 3 * r.stderr
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("joint, sign", [("dry", 1), ("alshaer2005", -1)])
+def test_slider_crank_exponent_signs(joint, sign):
+    # the dry joint is chaotic (λ₁ > 0), the lubricated one settles on a periodic orbit (λ₁ < 0);
+    # 3 standard errors of the batch means away from 0 (values in docs/user-guide/chaos.md)
+    T = 2 * math.pi / sc.SPEED
+    system = sc.slider_crank(joint).compile()
+    rtol = 1e-9 if joint == "dry" else 1e-8
+    r = system_lyapunov(
+        system,
+        tau=T / 16,
+        n_segments=16 * 30,
+        transient=10 * T,
+        time_scale=1 / sc.SPEED,
+        rtol=rtol,
+        atol=rtol * 1e-3,
+    )
+    assert sign * r.exponent > 3 * r.stderr
