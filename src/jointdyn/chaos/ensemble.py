@@ -241,3 +241,18 @@ def ensemble_table(result: dict) -> list[dict]:
                 }
             )
     return rows
+
+
+def ensemble_markdown(result: dict) -> str:
+    """A Markdown table of :func:`ensemble_table` (median [5 %, 95 %] per quantity, the median
+    at each tolerance, and the convergence verdict) for reports and the README."""
+    rows = ensemble_table(result)
+    groups = list(result["per_rtol"])
+    head = ["quantity", "unit", "median [5 %, 95 %]", *(f"median, rtol {g}" for g in groups), "converged (z)"]
+    lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+    for r in rows:
+        meds = [f"{r[f'median_rtol_{g}']:.4g}" for g in groups]
+        z = max(r["z"], r["half_z"])
+        cells = [r["quantity"], r["unit"], f"{r['median']:.4g} [{r['p5']:.4g}, {r['p95']:.4g}]", *meds]
+        lines.append("| " + " | ".join([*cells, f"{'yes' if r['converged'] else 'no'} ({z:.1f})"]) + " |")
+    return "\n".join(lines)

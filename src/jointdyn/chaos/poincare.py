@@ -2,7 +2,8 @@
 
 The section variables of a journal element are the journal's position relative to the bearing
 centre, e = P_j − P_i (world frame) [m], and its rate ė [m/s], both from the body coordinates
-and velocities at the output samples [T1, T2] (exact at the samples, no finite differences).
+and velocities at the output samples [T124] (exact at the samples, no finite differences).
+Sections: stroboscopic [T122] or a plane crossing [T123].
 """
 
 from __future__ import annotations
@@ -15,7 +16,7 @@ import numpy as np
 
 def journal_relative_state(res, element: str) -> dict[str, np.ndarray]:
     """ex, ey [m] and ex_dot, ey_dot [m/s] of journal element ``element`` at the output samples,
-    world frame, e = P_j − P_i [T1, T2]; plus the clearance c [m] under key ``"c"``."""
+    world frame, e = P_j − P_i [T124, T1, T2]; plus the clearance c [m] under key ``"c"``."""
     s = res.system
     if element not in s.element_names:
         raise KeyError(f"no force element named {element!r}; elements are {list(s.element_names)}")
@@ -64,7 +65,7 @@ def stroboscopic_indices(angle: np.ndarray, section_angle: float, tol: float = 1
 
 
 def stroboscopic(series: dict, angle: np.ndarray, section_angle: float, t: np.ndarray) -> Section:
-    """Stroboscopic section at crank angle ``section_angle`` [rad] (mod 2π). ``series`` maps
+    """Stroboscopic section at crank angle ``section_angle`` [rad] (mod 2π) [T122]. ``series`` maps
     names to arrays sampled with ``angle``. Where no sample lies on the section angle, the
     values are interpolated linearly between the two neighbouring samples."""
     idx = stroboscopic_indices(angle, section_angle)
@@ -80,7 +81,7 @@ def stroboscopic(series: dict, angle: np.ndarray, section_angle: float, t: np.nd
 
 def plane_crossing(series: dict, key: str, level: float, t: np.ndarray, direction: int = 1) -> Section:
     """Section where ``series[key]`` crosses ``level`` upwards (direction = +1), downwards (−1)
-    or both (0); the other variables are interpolated linearly to the crossing time."""
+    or both (0) [T123]; the other variables are interpolated linearly to the crossing time."""
     s = np.asarray(series[key]) - level
     up = (s[:-1] < 0) & (s[1:] >= 0)
     down = (s[:-1] > 0) & (s[1:] <= 0)

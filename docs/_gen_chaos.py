@@ -1,0 +1,92 @@
+"""Regenerate the figures and numbers of docs/user-guide/chaos.md (≈ 5 min on 2 cores).
+
+    python docs/_gen_chaos.py [--only poincare,lyapunov,ensemble]
+
+Writes docs/figures/chaos_*.png and prints the numbers quoted on the page. The bifurcation
+diagram comes from `jointdyn bifurcation examples/bifurcation_dry_clearance.toml --out DIR`
+(copy DIR/bifurcation.png to docs/figures/chaos_bifurcation_clearance.png).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+from pathlib import Path
+
+FIG = Path(__file__).resolve().parent / "figures"
+
+
+def poincare(revs: int = 220, transient: int = 20):
+    from jointdyn.chaos.poincare import journal_section, plot_sections
+    from jointdyn.models.slider_crank import SPEED
+    from jointdyn.runs import run_slider_crank
+
+    T = 2 * math.pi / SPEED
+    secs = {}
+    for joint, label, kw in (
+        ("alshaer2005", "lubricated (π-film, μ = 0.4 Pa·s)", {"rtol": 1e-8, "atol": 1e-12}),
+        ("dry", "dry (c_r = 0.9)", {"rtol": 1e-8, "atol": 1e-11}),
+    ):
+        res, _, _ = run_slider_crank(joint, revs, samples_per_rev=72, **kw)
+        sec = journal_section(res, transient=transient * T)
+        secs[label] = sec
+        x, y = sec.values["ex_over_c"], sec.values["ey_over_c"]
+        print(
+            f"poincare {joint}: {x.size} points, spread of ex/c {x.max() - x.min():.3g}, ey/c {y.max() - y.min():.3g}"
+        )
+    plot_sections(
+        secs, FIG / "chaos_poincare.png", "stroboscopic sections at crank angle 0, c = 0.5 mm, 5000 rpm"
+    )
+
+
+def lyapunov():
+    from jointdyn.chaos.lyapunov import plot_running, system_lyapunov
+    from jointdyn.models import slider_crank as sc
+
+    T = 2 * math.pi / sc.SPEED
+    rows = []
+    for joint, rtol, d0 in (
+        ("dry", 1e-9, 1e-8),
+        ("dry", 1e-8, 1e-8),
+        ("dry", 1e-9, 1e-7),
+        ("dry", 1e-9, 1e-9),
+        ("alshaer2005", 1e-8, 1e-8),
+        ("alshaer2005", 1e-9, 1e-8),
+    ):
+        r = system_lyapunov(
+            sc.slider_crank(joint).compile(),
+            tau=T / 16,
+            n_segments=16 * 40,
+            transient=10 * T,
+            time_scale=1 / sc.SPEED,
+            d0=d0,
+            rtol=rtol,
+            atol=rtol * 1e-3,
+        )
+        rows.append({"joint": joint, "rtol": rtol, "d0": d0, "lambda": r.exponent, "stderr": r.stderr})
+        print(f"lyapunov {joint} rtol {rtol:g} d0 {d0:g}: {r.exponent:.1f} ± {r.stderr:.1f} 1/s")
+        if rtol == 1e-9 and d0 == 1e-8 and joint == "dry":
+            plot_running(r, FIG / "chaos_lyapunov_dry.png", "dry slider-crank: running estimate of λ₁")
+        if rtol == 1e-8 and joint == "alshaer2005":
+            plot_running(
+                r, FIG / "chaos_lyapunov_lubricated.png", "lubricated slider-crank: running estimate of λ₁"
+            )
+    print(json.dumps(rows))
+
+
+def ensemble():
+    from jointdyn.chaos.ensemble import ensemble_table, slider_crank_ensemble
+
+    r = slider_crank_ensemble(
+        "dry", rtols=(1e-7, 1e-8, 1e-9), replicas=2, revs=110, transient_revs=10, workers=2
+    )
+    for row in ensemble_table(r):
+        print(json.dumps(row))
+
+
+if __name__ == "__main__":
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--only", default="poincare,lyapunov,ensemble")
+    for name in ap.parse_args().only.split(","):
+        globals()[name]()
