@@ -101,13 +101,19 @@ def test_sections_of_a_sine_are_exact():
 
 
 def test_journal_relative_velocity_matches_finite_differences():
-    res, _, _ = run_slider_crank("alshaer2005", 1.0, samples_per_rev=7200, rtol=1e-9, atol=1e-13)
-    st = journal_relative_state(res, "piston_pin")
-    assert np.allclose(st["ex"], res.element("piston_pin", "ex"), atol=1e-15)
-    fd = np.gradient(st["ey"], res.t)
-    # central differences on h = T/7200: error h²/6·|e'''| ≈ 1e-6 of the peak rate
-    scale = np.abs(st["ey_dot"]).max()
-    assert np.abs(fd[5:-5] - st["ey_dot"][5:-5]).max() < 1e-4 * scale
+    # central differences of e converge to the analytic ė at second order: halving h divides the
+    # difference by ≈ 4 (measured 3.1–3.3: both runs also differ by the tolerance-level noise);
+    # at h = T/3600 the measured difference is 5e-4 (ex) and 4e-5 (ey) of the peak rate
+    err = {}
+    for spr in (1800, 3600):
+        res, _, _ = run_slider_crank("alshaer2005", 1.0, samples_per_rev=spr, rtol=1e-8, atol=1e-12)
+        st = journal_relative_state(res, "piston_pin")
+        assert np.allclose(st["ex"], res.element("piston_pin", "ex"), atol=1e-15)
+        for k in ("ex", "ey"):
+            fd = np.gradient(st[k], res.t)
+            err[spr, k] = np.abs(fd[5:-5] - st[k + "_dot"][5:-5]).max() / np.abs(st[k + "_dot"]).max()
+    for k in ("ex", "ey"):
+        assert err[1800, k] / err[3600, k] > 2.8 and err[3600, k] < 1e-3
 
 
 def test_spectrum_of_the_perfect_slider_crank_matches_the_kinematics():
