@@ -131,6 +131,9 @@ def plot_sections(sections: dict, path, title: str = "") -> None:
 
     n = len(sections)
     fig, axes = plt.subplots(2, n, figsize=(4.2 * n, 8.2), squeeze=False)
+    for ax in axes[1, 1:]:  # one velocity scale for all sections (a periodic one is a dot)
+        ax.sharex(axes[1, 0])
+        ax.sharey(axes[1, 0])
     for col, (name, sec) in enumerate(sections.items()):
         v = sec.values
         ax = axes[0, col]
@@ -145,6 +148,7 @@ def plot_sections(sections: dict, path, title: str = "") -> None:
         ax.plot(v["ex_over_c"], v["exdot_over_cw"], ".", ms=3, color="C1")
         ax.set_xlabel("e_x / c [-]")
         ax.set_ylabel("ė_x / (c ω) [-]")
+        ax.ticklabel_format(useOffset=False)
     if title:
         fig.suptitle(title)
     fig.tight_layout()
