@@ -174,7 +174,7 @@ def simulate(
             break
         y, mem, t = y_fin.copy(), mem_fin.copy(), tc[-1]
         if progress is not None:
-            progress((t - t0) / config.t_end)
+            progress((t - t_out[0]) / config.t_end)
     wall = time.perf_counter() - t0
     Y = np.ascontiguousarray(np.concatenate(Ys))
     MEM = np.ascontiguousarray(np.concatenate(MEMs))

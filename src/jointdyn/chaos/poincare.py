@@ -24,8 +24,10 @@ def journal_relative_state(res, element: str) -> dict[str, np.ndarray]:
     el = s.elements[k]
     if not hasattr(el, "clearance"):
         raise TypeError(f"element {element!r} is a {type(el).__name__}, not a journal element")
-    bi, bj = int(s.fint[k, 1]), int(s.fint[k, 2])
-    xi_i, eta_i, xi_j, eta_j = (float(v) for v in s.freal[k, :4])
+    from ..layout import BODY_I, BODY_J, ETA_I, ETA_J, XI_I, XI_J
+
+    bi, bj = int(s.fint[k, BODY_I]), int(s.fint[k, BODY_J])
+    xi_i, eta_i, xi_j, eta_j = (float(s.freal[k, c]) for c in (XI_I, ETA_I, XI_J, ETA_J))
     q, qd = res.q, res.qd
 
     def point(b, xi, eta):
