@@ -193,6 +193,12 @@ def test_cli_poincare_and_spectrum(tmp_path):
         assert r.exit_code == 0, r.output
     rows = (out / "poincare.csv").read_text().splitlines()
     assert rows[0].startswith("t,ex_over_c") and len(rows) == 1 + 6  # revolutions 1…6 at angle 0
+    r = runner.invoke(app, ["poincare", str(out), "--transient-revs", "1", "--plane", "ey_over_c=0"])
+    assert r.exit_code == 0, r.output
+    rows = [list(map(float, x.split(","))) for x in (out / "poincare.csv").read_text().splitlines()[1:]]
+    assert rows and all(abs(row[2]) < 1e-12 for row in rows)  # ey/c interpolated onto the plane
+    r = runner.invoke(app, ["poincare", str(out), "--plane", "colour=0"])
+    assert r.exit_code == 2 and "ey_over_c" in r.output
     assert (out / "spectrum.png").exists()
 
 

@@ -32,17 +32,27 @@ def poincare(
     body: str = typer.Option("crank", help="driven body whose angle defines the section"),
     angle: float = typer.Option(0.0, help="crank angle of the stroboscopic section [deg]"),
     transient_revs: int = typer.Option(10, help="revolutions discarded at the start [rev]"),
+    plane: str = typer.Option(
+        None, help="plane-crossing section instead, VARIABLE=LEVEL (e.g. ey_over_c=0; upward crossings)"
+    ),
     out: Path = typer.Option(None, help="output directory (default: DIR)"),
 ):
-    """Stroboscopic Poincaré section of a journal's relative position and velocity: writes
-    poincare.csv and poincare.png."""
+    """Poincaré section (stroboscopic at a crank angle, or a plane crossing) of a journal's
+    relative position and velocity: writes poincare.csv and poincare.png."""
     from .chaos.io import load_run
     from .chaos.poincare import journal_section, plot_sections
 
     try:
         res = load_run(directory)
         w = _speed_of(res, body)
-        sec = journal_section(res, element, body, math.radians(angle), transient_revs * 2 * math.pi / abs(w))
+        pl = None
+        if plane:
+            key, sep, level = plane.partition("=")
+            if not sep:
+                raise ValueError(f"--plane {plane!r}: expected VARIABLE=LEVEL")
+            pl = (key.strip(), float(level), 1)
+        T = 2 * math.pi / abs(w)
+        sec = journal_section(res, element, body, math.radians(angle), transient_revs * T, plane=pl)
     except (ValueError, KeyError, TypeError) as err:
         _fail(err)
     out = Path(out or directory)
@@ -52,7 +62,8 @@ def poincare(
         f.write(",".join(["t", *names]) + "\n")
         for i in range(sec.t.size):
             f.write(",".join(f"{v:.10g}" for v in [sec.t[i], *(sec.values[k][i] for k in names)]) + "\n")
-    plot_sections({res.system.name: sec}, out / "poincare.png", f"section at crank angle {angle:g}°")
+    where = f"plane {plane}" if plane else f"crank angle {angle:g}°"
+    plot_sections({res.system.name: sec}, out / "poincare.png", f"section at {where}")
     console.print(f"{sec.t.size} section points; wrote {out}/poincare.csv, poincare.png")
 
 

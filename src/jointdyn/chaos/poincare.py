@@ -96,17 +96,10 @@ def plane_crossing(series: dict, key: str, level: float, t: np.ndarray, directio
     )
 
 
-def journal_section(
-    res,
-    element: str = "piston_pin",
-    driver_body: str = "crank",
-    section_angle: float = 0.0,
-    transient: float = 0.0,
-    omega: float | None = None,
-) -> Section:
-    """Stroboscopic section of a journal's relative state at crank angle ``section_angle``
-    [rad] after ``transient`` [s]: ex/c, ey/c [-] and ex_dot/(cω), ey_dot/(cω) [-] with ω the
-    mean angular speed of ``driver_body`` [rad/s] unless given."""
+def journal_series(res, element: str = "piston_pin", driver_body: str = "crank", omega: float | None = None):
+    """(series, crank angle) of a journal's relative state [T124]: ex/c, ey/c [-] and
+    ex_dot/(cω), ey_dot/(cω) [-] with ω the mean angular speed of ``driver_body`` [rad/s] unless
+    given."""
     st = journal_relative_state(res, element)
     c = st.pop("c")
     angle = res.coordinate(driver_body, "phi")
@@ -119,9 +112,30 @@ def journal_section(
         "exdot_over_cw": st["ex_dot"] / (c * abs(w)),
         "eydot_over_cw": st["ey_dot"] / (c * abs(w)),
     }
+    return series, angle
+
+
+def journal_section(
+    res,
+    element: str = "piston_pin",
+    driver_body: str = "crank",
+    section_angle: float = 0.0,
+    transient: float = 0.0,
+    omega: float | None = None,
+    plane: tuple[str, float, int] | None = None,
+) -> Section:
+    """Poincaré section of a journal's relative state (:func:`journal_series`) after
+    ``transient`` [s]: stroboscopic at crank angle ``section_angle`` [rad] [T122], or, with
+    ``plane = (variable, level, direction)``, where that variable crosses the level [T123]."""
+    series, angle = journal_series(res, element, driver_body, omega)
     keep = res.t >= transient - 1e-12
-    sec = stroboscopic({k: v[keep] for k, v in series.items()}, angle[keep], section_angle, res.t[keep])
-    return sec
+    series = {k: v[keep] for k, v in series.items()}
+    if plane is not None:
+        key, level, direction = plane
+        if key not in series:
+            raise ValueError(f"plane variable {key!r}: valid: {list(series)}")
+        return plane_crossing(series, key, float(level), res.t[keep], int(direction))
+    return stroboscopic(series, angle[keep], section_angle, res.t[keep])
 
 
 def plot_sections(sections: dict, path, title: str = "") -> None:
