@@ -179,8 +179,8 @@ def slider_crank_ensemble(
 ) -> dict:
     """Distributions of the per-revolution quantities of the shipped slider-crank over
     revolutions ``transient_revs`` … ``revs`` of ``replicas`` runs per tolerance (replica r > 0
-    starts from a seeded 1e-9 velocity perturbation), run in parallel on local processes, with
-    the convergence check across tolerances (:func:`convergence`). Returns
+    starts from a seeded 1e-9 velocity perturbation; atol = 1e-3·rtol), run in parallel on local
+    processes, with the convergence check across tolerances (:func:`convergence`). Returns
     ``{"bands": {quantity: band + convergence}, "per_rtol": {rtol: {quantity: band}}, "settings"}``.
     """
     from concurrent.futures import ProcessPoolExecutor
