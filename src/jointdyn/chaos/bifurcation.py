@@ -9,7 +9,7 @@ points per parameter value, a quasi-periodic or chaotic one a cloud. A diagram f
     joint = "dry"
     rtol = 1e-8
     [bifurcation]
-    parameter = "clearance"     # a builder argument (see jointdyn.sweep.MODEL_ARGS)
+    parameter = "clearance"     # a numeric builder argument (jointdyn.options.builder_args())
     range = { start = 1e-4, stop = 5e-4, num = 120 }   # or: values = [...]
     transient_revs = 100
     record_revs = 60
@@ -47,9 +47,9 @@ class BifurcationSpec:
     scheduler: str | None = field(default=None, compare=False)
 
     def __post_init__(self):
-        from ..sweep import MODEL_ARGS
+        from ..options import builder_args
 
-        valid = [a for a in MODEL_ARGS if a != "joint"]
+        valid = list(builder_args())
         if self.parameter not in valid:
             raise ValueError(
                 f"bifurcation.parameter = {self.parameter!r}: not a builder argument; valid: {valid}"
@@ -119,16 +119,16 @@ def run_point(
 ) -> dict:
     """One parameter value (in a worker process). Never raises: returns {"error": ...}."""
     from ..models.slider_crank import SPEED, slider_crank
+    from ..options import builder_args, run_args
     from ..runs import slider_crank_config
     from ..simulate import simulate
-    from ..sweep import MODEL_ARGS, RUN_ARGS
     from .poincare import journal_section
 
     t0 = time.perf_counter()
     try:
         merged = {**base, parameter: value}
-        model_kw = {k: merged[k] for k in MODEL_ARGS if k in merged and k != "joint"}
-        run_kw = {k: merged[k] for k in RUN_ARGS if k in merged and k != "samples_per_rev"}
+        model_kw = {k: merged[k] for k in builder_args() if k in merged}
+        run_kw = {k: merged[k] for k in run_args() if k in merged and k not in ("revs", "samples_per_rev")}
         joint = merged.get("joint", "dry")
         speed = float(model_kw.get("speed", SPEED))
         revs = transient_revs + record_revs
