@@ -27,7 +27,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[2]
 README = ROOT / "README.md"
 #: documents with generated blocks: the README must have every block, docs pages may use some
-PAGES = (ROOT / "docs" / "reproduction.md",)
+PAGES = (ROOT / "docs" / "reproduction.md", ROOT / "docs" / "validation.md")
 FIGURES = ROOT / "docs" / "figures"
 SWEEP_SPEC = ROOT / "examples" / "sweep_clearance_viscosity.toml"
 REVS = 4.0
@@ -178,11 +178,41 @@ def compare(old: str, new: str, name: str) -> list[str]:
     return out
 
 
+def validation_table() -> str:
+    """Max and mean errors of the steady design table against Raimondi & Boyd (1958) per L/D
+    (relative; attitude in degrees), ``finite`` with Reynolds' condition, ``long`` for L/D = ∞."""
+    from .bearing.validation import compare, load_published
+
+    res = compare(load_published(ROOT / "tests" / "data" / "raimondi_boyd_1958.csv"))
+    lines = [
+        "| L/D | S max / mean | φ max / mean [°] | (R/c)f max / mean | Q/(RcNL) max / mean "
+        "| Q_s/Q max | P/p_max max |",
+        "|---|---|---|---|---|---|---|",
+    ]
+
+    def pct(err, mean=True):
+        a = np.abs(err[np.isfinite(err)])
+        return f"{100 * a.max():.2g} %" + (f" / {100 * a.mean():.2g} %" if mean else "")
+
+    for ld in sorted(res, key=lambda x: -1 if np.isinf(x) else x, reverse=True):
+        r = res[ld]
+        name = "∞ (`long`)" if np.isinf(ld) else {1.0: "1", 0.5: "1/2", 0.25: "1/4"}.get(ld, f"{ld:g}")
+        att = np.abs(r["attitude_deg"][2])
+        side = pct(r["side_flow_ratio"][2], mean=False) if not np.isinf(ld) else "–"
+        lines.append(
+            f"| {name} | {pct(r['sommerfeld'][2])} | {att.max():.2g} / {att.mean():.2g} | "
+            f"{pct(r['friction_variable'][2])} | {pct(r['flow_variable'][2])} | {side} | "
+            f"{pct(r['pressure_ratio'][2], mean=False)} |"
+        )
+    return "\n".join(lines)
+
+
 def _blocks_now(runs, ds) -> dict[str, str]:
     return {
         "reproduce-table": reproduce_table(runs),
         "reproduce-claims": reproduce_claims(runs),
         "sweep-claims": sweep_claims(ds),
+        "validation-table": validation_table(),
     }
 
 
