@@ -1,12 +1,9 @@
-"""rodas4 and ros34pw2 with the exact system Jacobian vs their forward-difference Jacobian (same
-run, same code).
-
-The exact variants are the integrators' own loops (source of ``integrators.rodas4.rodas4`` and
-``integrators.ros34pw2.ros34pw2``) with the call
-``jacobian(...)`` replaced by ``jacobian.system_jacobian(...)`` and its cost counted as one RHS
-evaluation (it evaluates the forces once for λ and q̈). Lubricated slider-crank (π-film, c = 0.5 mm,
-5000 rpm, 4 revolutions). Accuracy: max |Δq| over the output grid against a reference run
-(rtol 1e-11, FD Jacobian) [m or rad].
+"""The stiff compiled solvers with the exact system Jacobian vs their forward-difference Jacobian
+(same run, same code: ``integrators.driver.run(..., exact_jacobian=True)`` calls
+``jacobian.system_jacobian``, counted as one RHS evaluation, where the shared step-control loop
+otherwise builds forward differences). Lubricated slider-crank (π-film, c = 0.5 mm, 5000 rpm,
+4 revolutions). Accuracy: max |Δq| over the output grid against a reference run (rodas4,
+rtol 1e-11, forward differences) [m or rad].
 
     python -m benchmarks.jacobian_rodas4 [--joint alshaer2005] [--revs 4] [--repeat 3] [--rtol 1e-6 1e-8]
 """
@@ -14,34 +11,14 @@ evaluation (it evaluates the forces once for λ and q̈). Lubricated slider-cran
 from __future__ import annotations
 
 import argparse
-import importlib
-import inspect
 import time
+from functools import partial
 
 import numpy as np
-from numba import njit
 
-from jointdyn.jacobian import system_jacobian
+from jointdyn.integrators.driver import RADAU5, RODAS4, ROS34PW2
+from jointdyn.integrators.driver import run as drive_run
 from jointdyn.models.slider_crank import SPEED, slider_crank
-
-r4 = importlib.import_module("jointdyn.integrators.rodas4")
-rw = importlib.import_module("jointdyn.integrators.ros34pw2")
-
-
-def exact_variant(mod, name, **consts):
-    """The compiled integrator ``mod.name`` with its forward-difference Jacobian call replaced
-    by the exact ``system_jacobian`` (counted as one RHS evaluation)."""
-    src = inspect.getsource(getattr(mod, name).py_func)
-    src = src.replace("@njit(cache=True)\n", "")
-    call = "jacobian(t, y, f0, mem, P, Jm, ft, work, fw)"
-    assert call in src and "stats[0] += nn + 1" in src
-    src = src.replace(call, "system_" + call)
-    src = src.replace("stats[0] += nn + 1", "stats[0] += 1")
-    ns = dict(vars(mod))
-    ns["system_jacobian"] = system_jacobian
-    ns.update(consts)  # e.g. REUSE = 1: refresh the (now cheap) Jacobian every step
-    exec(src, ns)  # noqa: S102 — the project's own source with one substitution
-    return njit(ns[name])
 
 
 def run(fn, P, system, t_out, rtol, atol):
@@ -64,13 +41,11 @@ def main(argv=None):
     t_out = np.linspace(0.0, a.revs * 2 * np.pi / SPEED, 2001)
     n = system.n
     variants = [
-        ("rodas4", "forward differences", r4.rodas4),
-        ("rodas4", "exact", exact_variant(r4, "rodas4")),
-        ("ros34pw2", "forward differences", rw.ros34pw2),
-        ("ros34pw2", "exact", exact_variant(rw, "ros34pw2")),
-        ("ros34pw2", "exact, refreshed every step", exact_variant(rw, "ros34pw2", REUSE=1)),
+        (name, kind, partial(drive_run, method, exact_jacobian=exact))
+        for name, method in (("rodas4", RODAS4), ("ros34pw2", ROS34PW2), ("radau5", RADAU5))
+        for kind, exact in (("forward differences", False), ("exact", True))
     ]
-    ref = run(r4.rodas4, P, system, t_out, 1e-11, 1e-13)[1]
+    ref = run(partial(drive_run, RODAS4), P, system, t_out, 1e-11, 1e-13)[1]
     print(f"joint {a.joint}, {a.revs:g} rev, n = {2 * n} states; accuracy vs rodas4 at rtol 1e-11")
     head = ("solver", "rtol", "Jacobian", "RHS evals", "accepted", "rejected", "RHS/accepted", "wall [s]")
     print("| " + " | ".join(head) + " | max abs(dq) |")

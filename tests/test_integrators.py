@@ -30,7 +30,7 @@ def exact(t, k, d, mass, x0):
     return x0 * (r2 * np.exp(r1 * t) - r1 * np.exp(r2 * t)) / (r2 - r1)
 
 
-@pytest.mark.parametrize("solver", ["dopri5", "rodas4", "ros34pw2", "scipy-radau"])
+@pytest.mark.parametrize("solver", ["dopri5", "rodas4", "ros34pw2", "radau5", "scipy-radau"])
 def test_oscillator_closed_form(solver):
     k, d, mass, x0 = 1e4, 5.0, 0.2, 1e-3
     res = simulate(
@@ -41,7 +41,7 @@ def test_oscillator_closed_form(solver):
     np.testing.assert_allclose(x, exact(res.t, k, d, mass, x0), atol=1e-9)
 
 
-@pytest.mark.parametrize("solver", ["rodas4", "ros34pw2"])
+@pytest.mark.parametrize("solver", ["rodas4", "ros34pw2", "radau5"])
 def test_rosenbrock_handles_stiff_damping_in_few_steps(solver):
     """Damping time constant m/d = 2e-8 s (the c = 0.05 mm film class): both stay cheap."""
     k, d, mass, x0 = 1e4, 1e7, 0.2, 1e-3

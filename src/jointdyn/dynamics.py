@@ -256,22 +256,75 @@ def outputs(ts, ys, mems, P, do_project):
     """Accelerations, multipliers and element outputs at saved states (post-processing).
 
     With ``do_project`` the (interpolated) output states are first projected on Φ = 0,
-    Φ̇ = 0 in place [T11], as the integrator does with its step states."""
+    Φ̇ = 0 in place [T11], as the integrator does with its step states: the same iteration as
+    :func:`project` (Gauss–Newton until max |Φ| ≤ 1e-12, at most 6 steps, then q̇), fused with
+    the drift report so that Φ, Φ_q are evaluated once per iterate and nothing is allocated
+    per sample [T112]."""
     nt = ts.shape[0]
     n = ys.shape[1] // 2
-    m = P[7]
-    nf = P[4].shape[0]
+    m = P.n_rows
+    minv, cint, creal = P.minv, P.cint, P.creal
+    nf = P.fint.shape[0]
     qdd = np.zeros((nt, n))
     lam = np.zeros((nt, max(m, 1)))
     eout = np.zeros((nt, nf, NOUT))
     drift = np.zeros((nt, 2))
+    mm = max(m, 1)
+    Phi = np.empty(mm)
+    J = np.empty((mm, n))
+    Phit = np.empty(mm)
+    gam = np.empty(mm)
+    S = np.empty((mm, mm))
+    x = np.empty(mm)
+    tol = 1e-12
     for i in range(nt):
-        if do_project and m > 0:
-            project(ts[i], ys[i], P, 1e-12)
-        q = ys[i, :n].copy()
-        qd = ys[i, n:].copy()
-        accelerations(ts[i], q, qd, mems[i], P, qdd[i], lam[i], eout[i])
-        p, v = constraint_residuals(ts[i], ys[i], P)
-        drift[i, 0] = p
-        drift[i, 1] = v
+        t = ts[i]
+        q = ys[i, :n]
+        qd = ys[i, n:]
+        if m > 0:
+            eval_constraints(t, q, qd, cint, creal, Phi[:m], J[:m], Phit[:m], gam[:m])
+            res = 0.0
+            for r in range(m):
+                res = max(res, abs(Phi[r]))
+            ok = True
+            if do_project:
+                it = 0
+                while res > tol and it < 6:  # Gauss–Newton, M-weighted minimal correction [T11]
+                    _schur_into(S[:m, :m], J[:m], minv, m, n)
+                    x[:m] = Phi[:m]
+                    if not cholesky_solve(S[:m, :m], x[:m]):
+                        ok = False
+                        break
+                    for c in range(n):
+                        s = 0.0
+                        for r in range(m):
+                            s += J[r, c] * x[r]
+                        q[c] -= minv[c] * s
+                    eval_constraints(t, q, qd, cint, creal, Phi[:m], J[:m], Phit[:m], gam[:m])
+                    res = 0.0
+                    for r in range(m):
+                        res = max(res, abs(Phi[r]))
+                    it += 1
+                if ok:  # q̇ onto Φ̇ = Φ_t + Φ_q q̇ = 0 with Φ_q at the final q [T11]
+                    for r in range(m):
+                        s = Phit[r]
+                        for c in range(n):
+                            s += J[r, c] * qd[c]
+                        x[r] = s
+                    _schur_into(S[:m, :m], J[:m], minv, m, n)
+                    if cholesky_solve(S[:m, :m], x[:m]):
+                        for c in range(n):
+                            s = 0.0
+                            for r in range(m):
+                                s += J[r, c] * x[r]
+                            qd[c] -= minv[c] * s
+            v = 0.0
+            for r in range(m):
+                s = Phit[r]
+                for c in range(n):
+                    s += J[r, c] * qd[c]
+                v = max(v, abs(s))
+            drift[i, 0] = res
+            drift[i, 1] = v
+        accelerations(t, q, qd, mems[i], P, qdd[i], lam[i], eout[i])
     return qdd, lam[:, :m], eout, drift

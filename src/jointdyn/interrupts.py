@@ -18,6 +18,7 @@ from .errors import Interrupted
 
 EXIT_CODES = {"SIGINT": 130, "SIGTERM": 143}
 _received: list[str] = []
+_depth = [0]  # nesting of catching() (simulate() inside a CLI command): only the outermost acts
 
 
 def _handler(signum, frame) -> None:
@@ -27,14 +28,16 @@ def _handler(signum, frame) -> None:
 @contextlib.contextmanager
 def catching() -> Iterator[None]:
     """Record SIGINT/SIGTERM instead of raising (main thread only; elsewhere a no-op)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
+    if threading.current_thread() is not threading.main_thread() or _depth[0] > 0:
+        yield  # in a worker thread, or inside an outer catching(): that one records
         return
     _received.clear()
     old = {s: signal.signal(s, _handler) for s in (signal.SIGINT, signal.SIGTERM)}
+    _depth[0] += 1
     try:
         yield
     finally:
+        _depth[0] -= 1
         for s, h in old.items():
             signal.signal(s, h)
 

@@ -15,6 +15,8 @@ MAX_STEPS = 2
 RHS_FAILED = 3
 MEMORY_FAILED = 4
 PROJECTION_FAILED = 5
+INTERRUPTED = 6  # SIGINT/SIGTERM (set by jointdyn.simulate, never by compiled code)
+FORCE_UNRESOLVED = 7  # an element force is noise at the tolerances (set by jointdyn.simulate)
 
 
 @njit(cache=True)
@@ -55,12 +57,12 @@ def write_dense(t0, y0, f0, t1, y1, f1, mem, t_out, iout, Y, MEM):
 @njit(cache=True)
 def accept_hooks(t, y, mem, P, do_project):
     """After an accepted step: project on the constraints, then update element memory."""
-    if do_project and P[7] > 0:
+    if do_project and P.n_rows > 0:
         if project(t, y, P, 1e-12) < 0.0:
             return PROJECTION_FAILED
     n = y.shape[0] // 2
     # non-zero codes from the elements (≥ 10, e.g. FILM_BREAKDOWN + element) pass through
-    return advance_memory(t, y[:n], y[n:], mem, P[4], P[5], P[6])
+    return advance_memory(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables)
 
 
 @njit(cache=True)

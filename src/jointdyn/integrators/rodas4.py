@@ -17,8 +17,7 @@ import numpy as np
 from numba import njit
 
 from ..dynamics import rhs
-from ..forces.elements import onset_fraction, step_limit
-from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, error_norm, start_outputs
+from .common import error_norm
 
 GAMMA = 0.25
 A = np.array(
@@ -149,120 +148,39 @@ def jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
 
 
 @njit(cache=True)
-def rodas4(P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project):
-    """Integrate from t0 to t_out[-1]; returns (Y, MEM, n_written, stats, status, t_reached, h_next,
-    y_final, mem_final).
-
-    stats = [rhs evaluations, accepted steps, rejected steps, Jacobian evaluations]."""
-    nn = y0.shape[0]
-    n = nn // 2
-    nout = t_out.shape[0]
-    Y, MEM, iout = start_outputs(y0, mem0, t0, t_out)
-    stats = np.zeros(4, dtype=np.int64)
-    h = h0 if h0 > 0 else 1e-6 * max(1.0, abs(t_out[-1] - t0))
-    h_prop = h
-    mem = mem0.copy()
-    y = y0.copy()
-    t = t0
-    t_end = t_out[-1]
-    K = np.zeros((6, nn))
-    Jm = np.empty((nn, nn))
-    W = np.empty((nn, nn))
-    piv = np.zeros(nn, dtype=np.int64)
-    f0 = np.empty(nn)
-    ft = np.empty(nn)
-    yt = np.empty(nn)
-    y1 = np.empty(nn)
-    fw = np.empty(nn)
-    work = np.empty(nn)
-    st = accept_hooks(t, y, mem, P, do_project)
-    if st != OK:
-        return Y, MEM, iout, stats, st, t, h, y, mem
-    if rhs(t, y, mem, P, f0) != 0:
-        return Y, MEM, iout, stats, RHS_FAILED, t, h, y, mem
-    stats[0] += 1
-    hmin = 1e-14 * max(1.0, abs(t_end))
-    need_jac = True
-    fail_status = OK
-    while t < t_end:
-        if stats[1] + stats[2] >= max_steps:
-            return Y, MEM, iout, stats, MAX_STEPS, t, h, y, mem
-        if need_jac:
-            if jacobian(t, y, f0, mem, P, Jm, ft, work, fw) != 0:
-                return Y, MEM, iout, stats, RHS_FAILED, t, h, y, mem
-            stats[0] += nn + 1
-            stats[3] += 1
-            need_jac = False
-        h = min(h, hmax, step_limit(y[:n], y[n:], mem, P[4], P[5]))
-        h_prop = h
-        if t + h >= t_end - 1e-14 * abs(t_end):
-            h = t_end - t
-        if h < hmin:
-            return Y, MEM, iout, stats, STEP_TOO_SMALL if fail_status == OK else fail_status, t, h, y, mem
-        inv = 1.0 / (h * GAMMA)
-        for i in range(nn):
-            for j in range(nn):
-                W[i, j] = -Jm[i, j]
-            W[i, i] += inv
-        if not lu_factor(W, piv):
-            stats[2] += 1
-            h *= 0.5
-            continue
-        bad = 0
-        for s in range(6):
-            if s == 0:
-                fw[:] = f0
-            else:
-                for i in range(nn):
-                    acc = y[i]
-                    for j in range(s):
-                        acc += A[s, j] * K[j, i]
-                    yt[i] = acc
-                bad |= rhs(t + CT[s] * h, yt, mem, P, fw)
-                stats[0] += 1
+def attempt_rodas4(t, h, P, w, rtol, atol):
+    """One trial step from (t, w.y) with f0 = w.f0 and the Jacobian in w.Jm, w.ft to w.y1
+    (stages in w.K). Returns (0, error norm), (1, inf) if W is singular, (2, inf) if a
+    right-hand side failed."""
+    y, y1, yt, fw, mem, K, W, Jm, piv, ft = w.y, w.y1, w.yt, w.fw, w.mem, w.K, w.W, w.Jm, w.piv, w.ft
+    nn = y.shape[0]
+    inv = 1.0 / (h * GAMMA)
+    for i in range(nn):
+        for j in range(nn):
+            W[i, j] = -Jm[i, j]
+        W[i, i] += inv
+    if not lu_factor(W, piv):
+        return 1, np.inf
+    bad = 0
+    for s in range(6):
+        if s == 0:
+            fw[:] = w.f0
+        else:
             for i in range(nn):
-                acc = fw[i] + h * D[s] * ft[i]
+                acc = y[i]
                 for j in range(s):
-                    acc += C[s, j] / h * K[j, i]
-                K[s, i] = acc
-            lu_solve(W, piv, K[s])
+                    acc += A[s, j] * K[j, i]
+                yt[i] = acc
+            bad |= rhs(t + CT[s] * h, yt, mem, P, fw)
+            w.stats[0] += 1
         for i in range(nn):
-            y1[i] = yt[i] + K[5, i]
-        if bad != 0:
-            stats[2] += 1
-            fail_status = RHS_FAILED
-            h *= 0.25
-            continue
-        en = error_norm(K[5], y, y1, rtol, atol)
-        if not np.isfinite(en):
-            stats[2] += 1
-            fail_status = RHS_FAILED
-            h *= 0.25
-            continue
-        if en > 1.0:
-            stats[2] += 1
-            h *= max(0.2, 0.9 * en**-0.25)
-            continue
-        frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P[4], P[5])
-        if frac < 1.0:
-            stats[2] += 1
-            h *= max(frac, 0.01)
-            continue
-        fail_status = OK
-        t_new = t + h
-        iout = write_dense_rodas(t, y, t_new, y1, K, mem, t_out, iout, Y, MEM)
-        y[:] = y1
-        t = t_new
-        stats[1] += 1
-        st = accept_hooks(t, y, mem, P, do_project)
-        if st != OK:
-            return Y, MEM, iout, stats, st, t, h, y, mem
-        if rhs(t, y, mem, P, f0) != 0:
-            return Y, MEM, iout, stats, RHS_FAILED, t, h, y, mem
-        stats[0] += 1
-        need_jac = True
-        h *= min(6.0, max(0.2, 0.9 * max(en, 1e-10) ** -0.25))
-    if iout == nout:
-        Y[nout - 1] = y
-        MEM[nout - 1] = mem
-    return Y, MEM, iout, stats, OK, t, h_prop, y, mem
+            acc = fw[i] + h * D[s] * ft[i]
+            for j in range(s):
+                acc += C[s, j] / h * K[j, i]
+            K[s, i] = acc
+        lu_solve(W, piv, K[s])
+    for i in range(nn):
+        y1[i] = yt[i] + K[5, i]
+    if bad != 0:
+        return 2, np.inf
+    return 0, error_norm(K[5], y, y1, rtol, atol)

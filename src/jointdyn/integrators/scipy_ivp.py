@@ -4,7 +4,9 @@ No projection is possible inside ``solve_ivp``, so this path relies on Baumgarte
 stabilisation [T10] (rate ``baumgarte`` [1/s]) and tight tolerances; its drift is reported in
 the results like any other run. Contact onsets and separations of journal elements are located
 as terminal events (root of the penetration δ); the element memory is advanced at each event
-and the integration restarted, so δ̇⁻ is the rate at δ = 0 to the event tolerance.
+(and at every output sample) by the same compiled hooks as in the compiled solvers
+(:func:`~jointdyn.integrators.common.accept_hooks` without projection), and the integration
+restarted, so δ̇⁻ is the rate at δ = 0 to the event tolerance.
 """
 
 from __future__ import annotations
@@ -13,23 +15,34 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..dynamics import rhs
-from ..forces.elements import advance_memory
-from ..forces.journal import CONTACT, IN_CONTACT, JOURNAL, ONSET_VEL, V_MIN, penetration
-from .common import OK, RHS_FAILED
+from ..forces.journal import CONTACT, IN_CONTACT, JOURNAL, NO_CONTACT, penetration
+from ..layout import BODY_I, BODY_J, TYPE
+from .common import INTERRUPTED, OK, RHS_FAILED, accept_hooks
 
 
-def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.inf):
+class _Stop(Exception):
+    """Raised inside the right-hand side when ``stop()`` says the run must end."""
+
+
+def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.inf, stop=None):
     """Integrate with ``solve_ivp``; same return tuple as the compiled integrators (accepted and
-    rejected step counts are not reported by ``solve_ivp`` and stay 0)."""
+        rejected step counts are not reported by ``solve_ivp`` and stay 0). ``stop(t)`` is polled at
+        every right-hand side evaluation; when it returns True the run ends with status INTERRUPTED
+        (outputs of the current event segment are lost: ``solve_ivp`` returns none on an error; the
+    reported time is that of the last right-hand side evaluation)."""
     nn = y0.shape[0]
     n = nn // 2
-    fint, freal = P[4], P[5]
+    fint, freal = P.fint, P.freal
     mem = mem0.copy()
     stats = np.zeros(4, dtype=np.int64)
     status = [OK]
-    contact = [k for k in range(fint.shape[0]) if fint[k, 0] == JOURNAL and fint[k, CONTACT] >= 0]
+    t_stop = [t0]  # time of the right-hand side evaluation at which stop() said yes
+    contact = [k for k in range(fint.shape[0]) if fint[k, TYPE] == JOURNAL and fint[k, CONTACT] != NO_CONTACT]
 
     def f(t, y):
+        if stop is not None and stop(t):
+            t_stop[0] = t
+            raise _Stop
         out = np.empty_like(y)
         if rhs(t, y, mem, P, out) != 0:
             status[0] = RHS_FAILED
@@ -37,7 +50,7 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
 
     def make_event(k):
         def ev(t, y):
-            d, _ = penetration(y[:n], y[n:], fint[k, 1], fint[k, 2], freal[k])
+            d, _ = penetration(y[:n], y[n:], fint[k, BODY_I], fint[k, BODY_J], freal[k])
             # onset: δ rises through +1e-12 m; separation: δ falls through −1e-12 m (the offsets keep
             # a restart exactly at the root from re-triggering the same event)
             return d - 1e-12 if mem[k, IN_CONTACT] < 0.5 else -d - 1e-12
@@ -59,46 +72,50 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
         te = t_out[iout:]
         # after an event restart with a small first step: scipy's initial-step heuristic would
         # otherwise jump deep into the stiff contact and an explicit method can blow up
-        sol = solve_ivp(
-            f,
-            (t, t_out[-1]),
-            y,
-            method=method,
-            t_eval=te,
-            rtol=rtol,
-            atol=atol,
-            max_step=max_step,
-            events=events or None,
-            first_step=first,
-        )
+        try:
+            sol = solve_ivp(
+                f,
+                (t, t_out[-1]),
+                y,
+                method=method,
+                t_eval=te,
+                rtol=rtol,
+                atol=atol,
+                max_step=max_step,
+                events=events or None,
+                first_step=first,
+            )
+        except _Stop:
+            status[0] = INTERRUPTED
+            break
         first = 1e-9 * max(1.0, abs(t_out[-1]))
         stats[0] += sol.nfev
         stats[3] += getattr(sol, "njev", 0)
         for i in range(len(sol.t)):
-            for k in contact:  # largest penetration, here over output samples and event states
-                d, _ = penetration(sol.y[:n, i], sol.y[n:, i], fint[k, 1], fint[k, 2], freal[k])
-                mem[k, 3] = max(mem[k, 3], d)
-            Y[iout], MEM[iout] = sol.y[:, i], mem
+            # memory (largest penetration, film breakdown) over output samples and event states
+            yi = np.ascontiguousarray(sol.y[:, i])
+            st = accept_hooks(sol.t[i], yi, mem, P, False)
+            Y[iout], MEM[iout] = yi, mem
             iout += 1
+            if st != OK:
+                status[0] = st
+                break
+        if status[0] != OK:
+            t = sol.t[i]
+            break
         if not sol.success:
             status[0] = RHS_FAILED
             break
         if sol.status == 1:  # an event: advance memory at the event state, restart after it
             k_ev = next(i for i, e in enumerate(sol.t_events) if len(e))
             t, y = sol.t_events[k_ev][0], sol.y_events[k_ev][0].copy()
-            d, dd = penetration(
-                y[:n], y[n:], fint[contact[k_ev], 1], fint[contact[k_ev], 2], freal[contact[k_ev]]
-            )
-            if mem[contact[k_ev], IN_CONTACT] < 0.5:
-                mem[contact[k_ev], IN_CONTACT] = 1.0
-                mem[contact[k_ev], ONSET_VEL] = max(dd, freal[contact[k_ev], V_MIN])
-                mem[contact[k_ev], 2] += 1.0
-            else:
-                mem[contact[k_ev], IN_CONTACT] = 0.0
-        else:
-            t = t_out[-1]
-    if status[0] == OK:
-        st = advance_memory(t, y[:n], y[n:], mem, fint, freal, P[6])
-        status[0] = st
-    t_reached = t_out[iout - 1] if iout else t0
+            # the event state has δ = +1e-12 m (onset) or −1e-12 m (separation): the shared hook
+            # records the onset velocity / the separation exactly as after a compiled step
+            st = accept_hooks(t, y, mem, P, False)
+            if st != OK:
+                status[0] = st
+                break
+        else:  # reached the end: the hooks already ran at the last output sample
+            t, y = t_out[-1], np.ascontiguousarray(sol.y[:, -1])
+    t_reached = t_stop[0] if status[0] == INTERRUPTED else (t_out[iout - 1] if iout else t0)
     return Y[:iout], MEM[:iout], iout, stats, status[0], t_reached, 0.0, y, mem

@@ -1,0 +1,72 @@
+"""Cost of the post-processing ``dynamics.outputs`` per sample, in right-hand-side equivalents.
+
+python -m benchmarks.outputs_cost              # perfect slider-crank, 4 rev, 2881 samples
+python -m benchmarks.outputs_cost --joint alshaer2005 --solver ros34pw2
+"""
+
+from __future__ import annotations
+
+import argparse
+import time
+
+import numpy as np
+from numba import njit
+
+from jointdyn.dynamics import outputs, rhs
+from jointdyn.integrators import SOLVERS
+from jointdyn.models import slider_crank as sc
+from jointdyn.runs import slider_crank_config
+from jointdyn.simulate import simulate
+
+
+@njit(cache=True)
+def _rhs_loop(ts, ys, mems, P, out):
+    s = 0
+    for i in range(ts.shape[0]):
+        s += rhs(ts[i], ys[i], mems[i], P, out)
+    return s
+
+
+def best(f, repeat):
+    """Smallest wall time of ``repeat`` calls [s] (the least disturbed by other processes)."""
+    ts = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        f()
+        ts.append(time.perf_counter() - t0)
+    return min(ts)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.outputs_cost")
+    ap.add_argument("--joint", default="perfect")
+    ap.add_argument("--solver", default=None)
+    ap.add_argument("--revs", type=float, default=4.0)
+    ap.add_argument("--repeat", type=int, default=20)
+    a = ap.parse_args(argv)
+    system = sc.slider_crank(a.joint).compile()
+    cfg = slider_crank_config(a.joint, a.revs, solver=a.solver)
+    res = simulate(system, cfg)
+    P = system.packed(0.0)
+    # the raw output states of the integrator (before outputs() projects them in place)
+    runner = SOLVERS[res.config["solver"]][0]
+    ts = np.linspace(0.0, cfg.t_end, cfg.n_out)
+    Y0, MEM, *_ = runner(P, system.y0, system.mem0, 0.0, ts, cfg.rtol, cfg.atol, 0.0, np.inf, 10**9, True)
+    out = np.empty(Y0.shape[1])
+    _rhs_loop(ts, Y0, MEM, P, out)
+    outputs(ts, Y0.copy(), MEM, P, True)
+    t_rhs = best(lambda: _rhs_loop(ts, Y0, MEM, P, out), a.repeat) / len(ts)
+    t_out = best(lambda: outputs(ts, Y0.copy(), MEM, P, True), a.repeat) / len(ts)
+    t_copy = best(lambda: Y0.copy(), a.repeat) / len(ts)
+    t_out -= t_copy
+    end_to_end = best(lambda: simulate(system, cfg), max(1, a.repeat // 4))
+    print(
+        f"{system.name}, solver {res.config['solver']}, {len(ts)} samples: "
+        f"outputs {t_out * 1e6:.2f} µs/sample, "
+        f"rhs {t_rhs * 1e6:.2f} µs/evaluation -> {t_out / t_rhs:.2f} RHS-equivalents per sample; "
+        f"outputs total {t_out * len(ts) * 1e3:.1f} ms, simulate end to end {end_to_end * 1e3:.1f} ms"
+    )
+
+
+if __name__ == "__main__":
+    main()

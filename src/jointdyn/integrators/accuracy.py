@@ -1,0 +1,77 @@
+"""Accuracy guard: is each element's force determined by the state to the accuracy the error
+control delivers? [T111]
+
+The error test accepts a step when the state error is of the order of the tolerance
+s_j = atol + rtol·|y_j| in every component. The force of an element is then known only to
+
+    δF_k = Σ_j |F_k(y + s_j e_j) − F_k(y)|        (secant over the tolerance, all components)
+
+A very stiff element (film of huge viscosity, tiny clearance) can have δF_k larger than the
+force itself: the state is "accurate" but the force computed from it — and every multiplier
+that carries it, e.g. a crank moment — is noise. :func:`force_resolution` evaluates δF_k;
+``jointdyn.simulate`` checks it at a set of output samples and stops with a
+:class:`~jointdyn.errors.SimulationError` naming the element instead of returning noise.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..forces.elements import NOUT, eval_forces
+
+FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.OUT_COLUMNS)
+
+
+@njit(cache=True)
+def force_resolution(t, y, mem, P, rtol, atol, dF):
+    """δF_k [N] of every element at (t, y) into dF (nf,) [T111]."""
+    fint, freal, tables = P.fint, P.freal, P.tables
+    nn = y.shape[0]
+    n = nn // 2
+    nf = fint.shape[0]
+    Q = np.zeros(n)
+    out0 = np.zeros((nf, NOUT))
+    out1 = np.zeros((nf, NOUT))
+    eval_forces(t, y[:n], y[n:], mem, fint, freal, tables, Q, out0)
+    yp = y.copy()
+    dF[:] = 0.0
+    for j in range(nn):
+        yp[j] = y[j] + (atol + rtol * abs(y[j]))
+        Q[:] = 0.0
+        eval_forces(t, yp[:n], yp[n:], mem, fint, freal, tables, Q, out1)
+        for k in range(nf):
+            dF[k] += np.hypot(out1[k, FX] - out0[k, FX], out1[k, FY] - out0[k, FY])
+        yp[j] = y[j]
+
+
+@njit(cache=True)
+def worst_resolution(ts, ys, mems, P, rtol, atol, idx):
+    """Over the samples ``idx``: (largest δF_k [N], sample index where it occurs) per element."""
+    nf = P.fint.shape[0]
+    worst = np.zeros(nf)
+    where = np.zeros(nf, dtype=np.int64)
+    dF = np.zeros(nf)
+    for i in idx:
+        force_resolution(ts[i], ys[i], mems[i], P, rtol, atol, dF)
+        for k in range(nf):
+            if dF[k] > worst[k]:
+                worst[k] = dF[k]
+                where[k] = i
+    return worst, where
+
+
+def check_force_resolution(ts, ys, mems, eout, P, rtol, atol, n_check: int = 64):
+    """(element index, δF [N], peak |F| [N], time [s]) of the element whose force is least
+    resolved relative to its peak, checked at ``n_check`` evenly spaced samples and at each
+    element's largest-force sample; None if there are no elements or no samples."""
+    nt, nf = eout.shape[0], eout.shape[1]
+    if nt == 0 or nf == 0:
+        return None
+    F = np.hypot(eout[:, :, FX], eout[:, :, FY])
+    idx = np.unique(np.concatenate([np.linspace(0, nt - 1, min(n_check, nt)).astype(np.int64), F.argmax(0)]))
+    worst, where = worst_resolution(ts, ys, mems, P, rtol, atol, idx)
+    peak = F.max(0)
+    ratio = np.where(peak > 0, worst / np.where(peak > 0, peak, 1.0), 0.0)  # unloaded: nothing to resolve
+    k = int(ratio.argmax())
+    return k, float(worst[k]), float(peak[k]), float(ts[where[k]])

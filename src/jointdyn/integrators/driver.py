@@ -1,0 +1,331 @@
+"""The one compiled step-control loop shared by the compiled integrators [T110].
+
+Each method contributes a compiled ``attempt`` (one trial step from the state in ``Work``) and a
+dense-output writer; this module owns everything around them: step-size limits (``hmax``,
+contact ``step_limit``, landing on ``t_end`` or on output times), rejection and retry (error
+norm, failed right-hand side, singular iteration matrix, unresolved contact onset), the
+accepted-step hooks (projection, element memory), the step-size controller and the Jacobian
+reuse counter.
+
+All loop state lives in the arrays of :class:`Work` (``ctl``: floats, ``ictl``: integers), so
+:func:`drive` can return after ``budget`` step attempts and be called again to continue *bit for
+bit* as if it had never stopped (``simulate`` uses this to stay responsive to signals).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+from numba import njit
+
+from ..dynamics import rhs
+from ..forces.elements import onset_fraction, step_limit
+from ..jacobian import system_jacobian
+from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, start_outputs, write_dense
+from .dopri5 import attempt_dopri5
+from .radau5 import (
+    HHFAC,
+    attempt_radau5,
+    radau5_accepted,
+    radau5_rejected,
+    store_polynomial,
+    tolerances,
+    write_dense_radau5,
+)
+from .rodas4 import attempt_rodas4, jacobian, write_dense_rodas
+from .ros34pw2 import attempt_ros34pw2
+
+# method codes
+DOPRI5, RODAS4, ROS34PW2, RADAU5 = 0, 1, 2, 3
+METHODS = {"dopri5": DOPRI5, "rodas4": RODAS4, "ros34pw2": ROS34PW2, "radau5": RADAU5}
+# accepted steps a Jacobian is kept (0: none needed; radau5 decides itself from the Newton rate)
+REUSE = np.array([0, 1, 10, 1 << 60])  # accepted steps a Jacobian is kept (0: none needed)
+RUNNING = -1  # drive() returned because its step budget was used up; call it again
+
+# attempt() results
+ATTEMPT_OK, ATTEMPT_SINGULAR, ATTEMPT_BAD, ATTEMPT_DIVERGED = 0, 1, 2, 3
+
+# slots of Work.ctl (floats) and Work.ictl (integers)
+T, H, H_PROP, E_PREV, H_LU = range(5)  # slots 4–11: radau5 (see radau5.py)
+IOUT, FAIL, AGE, STARTED = range(4)  # slots 4–5: radau5
+EXACT_JAC = 6  # 1: analytic jacobian.system_jacobian, 0: forward differences
+
+
+class Work(NamedTuple):
+    """Everything a compiled integration carries between steps and between calls."""
+
+    y: np.ndarray  # state [q, q̇] at ctl[T]
+    mem: np.ndarray  # element memory
+    f0: np.ndarray  # f(t, y)
+    ctl: np.ndarray  # float loop state (slots T, H, H_PROP, E_PREV, …)
+    ictl: np.ndarray  # integer loop state (slots IOUT, FAIL, AGE, …)
+    stats: np.ndarray  # [rhs evaluations, accepted, rejected, Jacobians]
+    Y: np.ndarray  # output states (n_out, nn)
+    MEM: np.ndarray  # output memory (n_out, nf, NMEM)
+    K: np.ndarray  # stage vectors (10, nn)
+    Jm: np.ndarray  # ∂f/∂y
+    W: np.ndarray  # iteration matrix (real, LU)
+    piv: np.ndarray
+    W2: np.ndarray  # radau5: the complex iteration matrix as a real (2nn, 2nn) block (LU)
+    piv2: np.ndarray
+    ft: np.ndarray  # ∂f/∂t
+    yt: np.ndarray
+    y1: np.ndarray
+    fw: np.ndarray
+    work: np.ndarray
+    err: np.ndarray
+    gk: np.ndarray
+
+
+def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian: bool = False) -> Work:
+    """Work arrays for integrating from (t0, y0, mem0); outputs at or before t0 are filled.
+    ``exact_jacobian``: the stiff methods use :func:`jointdyn.jacobian.system_jacobian` (one
+    force evaluation, counted as one RHS evaluation) instead of forward differences."""
+    nn = y0.shape[0]
+    Y, MEM, iout = start_outputs(y0, mem0, t0, t_out)
+    n2 = 2 * nn if method == RADAU5 else 1
+    ctl = np.zeros(12)
+    ctl[T] = t0
+    ctl[H] = h0 if h0 > 0 else 1e-6 * max(1.0, abs(t_out[-1] - t0))
+    ctl[H_PROP] = ctl[H]
+    ctl[E_PREV] = 1.0
+    ctl[H_LU] = -1.0
+    ctl[5:8] = (1.0, 1.0, 1.0)  # radau5: θ, Newton factor, previous h
+    ictl = np.zeros(7, dtype=np.int64)
+    ictl[EXACT_JAC] = int(bool(exact_jacobian))
+    ictl[IOUT] = iout
+    ictl[AGE] = REUSE[method]  # forces a Jacobian on the first step
+    return Work(
+        y=y0.astype(float).copy(),
+        mem=mem0.astype(float).copy(),
+        f0=np.zeros(nn),
+        ctl=ctl,
+        ictl=ictl,
+        stats=np.zeros(4, dtype=np.int64),
+        Y=Y,
+        MEM=MEM,
+        K=np.zeros((10, nn)),
+        Jm=np.zeros((nn, nn)),
+        W=np.zeros((nn, nn)),
+        piv=np.zeros(nn, dtype=np.int64),
+        W2=np.zeros((n2, n2)),
+        piv2=np.zeros(n2, dtype=np.int64),
+        ft=np.zeros(nn),
+        yt=np.zeros(nn),
+        y1=np.zeros(nn),
+        fw=np.zeros(nn),
+        work=np.zeros(nn),
+        err=np.zeros(nn),
+        gk=np.zeros(nn),
+    )
+
+
+@njit(cache=True)
+def _attempt(method, t, h, P, w, rtol, atol):
+    """One trial step of ``method`` from (t, w.y) to w.y1; returns (result, error norm)."""
+    if method == DOPRI5:
+        return attempt_dopri5(t, h, P, w, rtol, atol)
+    if method == RODAS4:
+        return attempt_rodas4(t, h, P, w, rtol, atol)
+    if method == ROS34PW2:
+        return attempt_ros34pw2(t, h, P, w, rtol, atol)
+    return attempt_radau5(t, h, P, w, rtol, atol)
+
+
+@njit(cache=True)
+def _dense(method, t, y, t_new, t_out, iout, w):
+    """Write the outputs in (t, t_new] from the method's continuous extension (before the
+    accepted-step hooks); returns the next output index."""
+    if method == DOPRI5:
+        return write_dense(t, y, w.K[0], t_new, w.y1, w.K[6], w.mem, t_out, iout, w.Y, w.MEM)
+    if method == RODAS4:
+        return write_dense_rodas(t, y, t_new, w.y1, w.K, w.mem, t_out, iout, w.Y, w.MEM)
+    if method == RADAU5:
+        store_polynomial(t_new - t, w)
+        return write_dense_radau5(t, t_new, w.y1, w.K, w.mem, t_out, iout, w.Y, w.MEM)
+    return iout
+
+
+@njit(cache=True)
+def _reject_factor(method, en):
+    """Step-size factor after an error-test failure (en > 1)."""
+    if method == DOPRI5:
+        return max(0.2, 0.9 * en**-0.2)
+    if method == RODAS4:
+        return max(0.2, 0.9 * en**-0.25)
+    return max(0.2, 0.8 * en ** (-1.0 / 3.0))
+
+
+@njit(cache=True)
+def start(method, P, do_project, w):
+    """Accepted-step hooks and f(t0, y0) at the initial state; returns a status code."""
+    t = w.ctl[T]
+    st = accept_hooks(t, w.y, w.mem, P, do_project)
+    if st != OK:
+        return st
+    if rhs(t, w.y, w.mem, P, w.f0) != 0:
+        return RHS_FAILED
+    w.stats[0] += 1
+    if method == DOPRI5:
+        w.K[0, :] = w.f0
+    w.ictl[STARTED] = 1
+    return OK
+
+
+@njit(cache=True)
+def drive(method, P, t_out, rtol, atol, hmax, max_steps, do_project, budget, w):
+    """Integrate towards t_out[-1] for at most ``budget`` step attempts.
+
+    Returns OK (t_out[-1] reached), RUNNING (budget used up; call again to continue) or an
+    error status (common.py). Outputs go to w.Y/w.MEM up to index w.ictl[IOUT]."""
+    nn = w.y.shape[0]
+    n = nn // 2
+    nout = t_out.shape[0]
+    y, mem, stats, ctl, ictl = w.y, w.mem, w.stats, w.ctl, w.ictl
+    y1 = w.y1
+    t = ctl[T]
+    h = ctl[H]
+    h_prop = ctl[H_PROP]
+    iout = ictl[IOUT]
+    fail_status = ictl[FAIL]
+    t_end = t_out[-1]
+    hmin = 1e-14 * max(1.0, abs(t_end))
+    reuse = REUSE[method]
+    attempts = 0
+    status = OK
+    while t < t_end:
+        if attempts >= budget:
+            status = RUNNING
+            break
+        attempts += 1
+        if stats[1] + stats[2] >= max_steps:
+            status = MAX_STEPS
+            break
+        if reuse > 0 and ictl[AGE] >= reuse:
+            if ictl[EXACT_JAC] == 1:
+                bad = system_jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
+                stats[0] += 1
+            else:
+                bad = jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
+                stats[0] += nn + 1
+            if bad != 0:
+                status = RHS_FAILED
+                break
+            stats[3] += 1
+            ictl[AGE] = 0
+            ctl[H_LU] = -1.0  # radau5: refactor with the new Jacobian
+        h = min(h, hmax, step_limit(y[:n], y[n:], mem, P.fint, P.freal))
+        h_prop = h
+        if method == ROS34PW2:  # no dense output: land on the next output time
+            if iout < nout and t + h >= t_out[iout] - 1e-14 * abs(t_out[iout]):
+                h = t_out[iout] - t
+        elif t + h >= t_end - 1e-14 * abs(t_end):
+            h = t_end - t
+        if h < hmin:
+            status = STEP_TOO_SMALL if fail_status == OK else fail_status
+            break
+        res, en = _attempt(method, t, h, P, w, rtol, atol)
+        if res == ATTEMPT_SINGULAR:  # iteration matrix not invertible
+            stats[2] += 1
+            h *= 0.5
+            if method == ROS34PW2:
+                ictl[AGE] = reuse
+            continue
+        if res == ATTEMPT_DIVERGED:  # radau5: Newton failed; renew a Jacobian that is not fresh
+            stats[2] += 1
+            h *= ctl[HHFAC]
+            ictl[4] = 1  # radau5.REJECTED
+            if ictl[AGE] > 0:
+                ictl[AGE] = reuse
+            continue
+        if res == ATTEMPT_BAD or not np.isfinite(en):
+            stats[2] += 1
+            fail_status = RHS_FAILED
+            h *= 0.25
+            if method == ROS34PW2 or (method == RADAU5 and ictl[AGE] > 0):
+                ictl[AGE] = reuse
+            continue
+        if en > 1.0:
+            stats[2] += 1
+            if method == RADAU5:
+                h = radau5_rejected(h, en, w)
+                if ictl[AGE] > 0:
+                    ictl[AGE] = reuse
+                continue
+            h *= _reject_factor(method, en)
+            if method == ROS34PW2 and ictl[AGE] > 0:  # a stale Jacobian may be the cause
+                ictl[AGE] = reuse
+            continue
+        frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal)
+        if frac < 1.0:
+            stats[2] += 1
+            h *= max(frac, 0.01)
+            continue
+        # accepted
+        fail_status = OK
+        t_new = t + h
+        iout = _dense(method, t, y, t_new, t_out, iout, w)
+        y[:] = y1
+        t = t_new
+        stats[1] += 1
+        ictl[AGE] += 1
+        st = accept_hooks(t, y, mem, P, do_project)
+        if st != OK:
+            status = st
+            break
+        if method == ROS34PW2:
+            while iout < nout and t_out[iout] <= t + 1e-14 * abs(t):
+                w.Y[iout] = y
+                w.MEM[iout] = mem
+                iout += 1
+        if method == DOPRI5 and not (do_project and P.n_rows > 0):
+            w.K[0, :] = w.K[6]  # first-same-as-last
+            w.f0[:] = w.K[6]
+        else:
+            if rhs(t, y, mem, P, w.f0) != 0:
+                status = RHS_FAILED
+                break
+            stats[0] += 1
+            if method == DOPRI5:
+                w.K[0, :] = w.f0
+        e_now = max(en, 1e-10)
+        if method == DOPRI5:
+            h *= min(5.0, max(0.2, 0.9 * e_now**-0.2))
+        elif method == RODAS4:
+            h *= min(6.0, max(0.2, 0.9 * e_now**-0.25))
+        elif method == RADAU5:
+            h = radau5_accepted(h, hmax, en, w, reuse)
+        else:
+            # PI controller (Gustafsson; Hairer & Wanner II §IV.8): exponents 0.7/k, 0.4/k, k = 3
+            fac = 0.9 * e_now ** (-0.7 / 3.0) * ctl[E_PREV] ** (0.4 / 3.0)
+            ctl[E_PREV] = e_now
+            h = max(h, h_prop) * min(3.0, max(0.2, fac))
+    if status == OK and iout == nout:
+        w.Y[nout - 1] = y
+        w.MEM[nout - 1] = mem
+    ctl[T] = t
+    ctl[H] = h
+    ctl[H_PROP] = h_prop
+    ictl[IOUT] = iout
+    ictl[FAIL] = fail_status
+    return status
+
+
+def method_tolerances(method: int, rtol: float, atol: float) -> tuple[float, float]:
+    """The tolerances the method's error test uses for the user's (rtol, atol)."""
+    return tolerances(rtol, atol) if method == RADAU5 else (rtol, atol)
+
+
+def run(
+    method: int, P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project, exact_jacobian=False
+):
+    """Integrate from t0 to t_out[-1] in one call; returns (Y, MEM, n_written, stats, status,
+    t_reached, h_next, y_final, mem_final), the historical return of the compiled solvers."""
+    w = new_work(method, y0, mem0, t0, t_out, h0, exact_jacobian)
+    st = start(method, P, do_project, w)
+    rtol, atol = method_tolerances(method, rtol, atol)
+    if st == OK:
+        st = drive(method, P, t_out, rtol, atol, hmax, max_steps, do_project, 2**62, w)
+    h = w.ctl[H_PROP] if st == OK else w.ctl[H]
+    return w.Y, w.MEM, int(w.ictl[IOUT]), w.stats, st, float(w.ctl[T]), h, w.y, w.mem

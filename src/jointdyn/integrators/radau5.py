@@ -1,0 +1,294 @@
+"""Compiled Radau IIA of order 5 (3 stages, L-stable, stiffly accurate) [T113].
+
+Hairer & Wanner, *Solving ODEs II* (1996), §IV.8, and their code RADAU5: the collocation
+system is solved by simplified Newton in transformed variables (one real n×n and one complex
+n×n system per iteration, here the complex one as a real 2n×2n block), started from the
+collocation polynomial of the previous step; the Jacobian is kept while the Newton contraction
+θ stays ≤ 0.001 and the LU while h does not change; embedded error estimate (E1 solve of
+γ₀⁻¹-weighted stage combination, refined after a rejection); Gustafsson's predictive step-size
+controller; collocation dense output. The Jacobian comes from :func:`system_jacobian` (one call,
+replaceable by an analytic ``(t, y, f0, mem, P, Jm, ft, work, fw)`` function).
+
+Tolerances are mapped as in RADAU5 (rtol' = 0.1·rtol^(2/3), atol' = atol·rtol'/rtol) so that a
+given rtol gives an accuracy comparable to the other methods.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from ..dynamics import rhs
+from .rodas4 import jacobian as system_jacobian  # noqa: F401  (the swappable Jacobian)
+from .rodas4 import lu_factor, lu_solve
+
+SQ6 = np.sqrt(6.0)
+C1 = (4.0 - SQ6) / 10.0
+C2 = (4.0 + SQ6) / 10.0
+C1M1 = C1 - 1.0
+C2M1 = C2 - 1.0
+C1MC2 = C1 - C2
+DD1 = -(13.0 + 7.0 * SQ6) / 3.0
+DD2 = (-13.0 + 7.0 * SQ6) / 3.0
+DD3 = -1.0 / 3.0
+_U1 = (6.0 + 81.0 ** (1.0 / 3.0) - 9.0 ** (1.0 / 3.0)) / 30.0
+_ALPH = (12.0 - 81.0 ** (1.0 / 3.0) + 9.0 ** (1.0 / 3.0)) / 60.0
+_BETA = (81.0 ** (1.0 / 3.0) + 9.0 ** (1.0 / 3.0)) * np.sqrt(3.0) / 60.0
+_CNO = _ALPH**2 + _BETA**2
+U1 = 1.0 / _U1
+ALPH = _ALPH / _CNO
+BETA = _BETA / _CNO
+T11, T12, T13 = 9.1232394870892942792e-02, -0.14125529502095420843, -3.0029194105147424492e-02
+T21, T22, T23 = 0.24171793270710701896, 0.20412935229379993199, 0.38294211275726193779
+T31 = 0.96604818261509293619
+TI11, TI12, TI13 = 4.3255798900631553510, 0.33919925181580986954, 0.54177053993587487119
+TI21, TI22, TI23 = -4.1787185915519047273, -0.32768282076106238708, 0.47662355450055045196
+TI31, TI32, TI33 = -0.50287263494578687595, 2.5719269498556054292, -0.59603920482822492497
+
+NIT = 7  # Newton iterations per step at most
+THET = 0.001  # keep the Jacobian while θ ≤ THET
+QUOT1, QUOT2 = 1.0, 1.2  # keep h (and the LU) if h_new/h is in [QUOT1, QUOT2]
+SAFE = 0.9
+FACL, FACR = 5.0, 0.125  # h_new ∈ [h/5, 8h]
+UROUND = 2.220446049250313e-16
+
+# Work.ctl slots used here (after the driver's T, H, H_PROP, E_PREV)
+H_LU, THETA, FACCON, H_OLD, H_ACC, ERR_ACC, NEWT, HHFAC = 4, 5, 6, 7, 8, 9, 10, 11
+# Work.ictl slots used here (after the driver's IOUT, FAIL, AGE, STARTED)
+REJECTED, HAVE_CONT = 4, 5
+# Work.K rows: Z1–Z3 (0–2), F1–F3 (3–5), collocation polynomial of the last step (6–8)
+
+
+def tolerances(rtol, atol):
+    """RADAU5's internal tolerances (rtol', atol') from the user's [T113]."""
+    r = 0.1 * rtol ** (2.0 / 3.0)
+    return r, atol * r / rtol
+
+
+@njit(cache=True)
+def _factor(h, w):
+    """Real E1 = (U1/h) I − J and complex E2 = ((α + iβ)/h) I − J as a real 2n×2n block."""
+    Jm, W, W2 = w.Jm, w.W, w.W2
+    nn = Jm.shape[0]
+    fac1 = U1 / h
+    alphn = ALPH / h
+    betan = BETA / h
+    for i in range(nn):
+        for j in range(nn):
+            W[i, j] = -Jm[i, j]
+            W2[i, j] = -Jm[i, j]
+            W2[nn + i, nn + j] = -Jm[i, j]
+            W2[i, nn + j] = 0.0
+            W2[nn + i, j] = 0.0
+        W[i, i] += fac1
+        W2[i, i] += alphn
+        W2[nn + i, nn + i] += alphn
+        W2[i, nn + i] = -betan
+        W2[nn + i, i] = betan
+    return lu_factor(W, w.piv) and lu_factor(W2, w.piv2)
+
+
+@njit(cache=True)
+def attempt_radau5(t, h, P, w, rtol, atol):
+    """One trial step (rtol, atol already mapped by :func:`tolerances`). Returns (0, err),
+    (1, inf) singular, (2, inf) failed right-hand side, (3, inf) Newton failure (h factor in
+    w.ctl[HHFAC])."""
+    y, y1, mem, K, ctl, ictl = w.y, w.y1, w.mem, w.K, w.ctl, w.ictl
+    nn = y.shape[0]
+    scal = w.err
+    for i in range(nn):
+        scal[i] = atol + rtol * abs(y[i])
+    if ctl[H_LU] != h:
+        if not _factor(h, w):
+            ctl[H_LU] = -1.0
+            return 1, np.inf
+        ctl[H_LU] = h
+    fac1 = U1 / h
+    alphn = ALPH / h
+    betan = BETA / h
+    fnewt = max(10.0 * UROUND / rtol, min(0.03, rtol**0.5))
+    Z1, Z2, Z3, F1, F2, F3 = K[0], K[1], K[2], K[3], K[4], K[5]
+    # starting values: extrapolated collocation polynomial of the previous step
+    if ictl[HAVE_CONT] == 1:
+        c3q = h / ctl[H_OLD]
+        c1q = C1 * c3q
+        c2q = C2 * c3q
+        for i in range(nn):
+            ak1, ak2, ak3 = K[6, i], K[7, i], K[8, i]
+            z1 = c1q * (ak1 + (c1q - C2M1) * (ak2 + (c1q - C1M1) * ak3))
+            z2 = c2q * (ak1 + (c2q - C2M1) * (ak2 + (c2q - C1M1) * ak3))
+            z3 = c3q * (ak1 + (c3q - C2M1) * (ak2 + (c3q - C1M1) * ak3))
+            Z1[i], Z2[i], Z3[i] = z1, z2, z3
+            F1[i] = TI11 * z1 + TI12 * z2 + TI13 * z3
+            F2[i] = TI21 * z1 + TI22 * z2 + TI23 * z3
+            F3[i] = TI31 * z1 + TI32 * z2 + TI33 * z3
+    else:
+        for i in range(nn):
+            Z1[i] = Z2[i] = Z3[i] = F1[i] = F2[i] = F3[i] = 0.0
+    yt, fw = w.yt, w.fw
+    a1, a2, a3 = w.work, w.gk, w.ft  # scratch (ft is not used by radau5)
+    r2 = np.empty(2 * nn)
+    faccon = ctl[FACCON]
+    theta = ctl[THETA]
+    dynold = 1.0
+    thqold = 1.0
+    newt = 0
+    while True:
+        if newt >= NIT:
+            ctl[HHFAC] = 0.5
+            return 3, np.inf
+        bad = 0
+        for i in range(nn):
+            yt[i] = y[i] + Z1[i]
+        bad |= rhs(t + C1 * h, yt, mem, P, a1)
+        for i in range(nn):
+            yt[i] = y[i] + Z2[i]
+        bad |= rhs(t + C2 * h, yt, mem, P, a2)
+        for i in range(nn):
+            yt[i] = y[i] + Z3[i]
+        bad |= rhs(t + h, yt, mem, P, a3)
+        w.stats[0] += 3
+        if bad != 0:
+            return 2, np.inf
+        newt += 1
+        dyno = 0.0
+        for i in range(nn):
+            g1 = TI11 * a1[i] + TI12 * a2[i] + TI13 * a3[i] - F1[i] * fac1
+            g2 = TI21 * a1[i] + TI22 * a2[i] + TI23 * a3[i] - F2[i] * alphn + F3[i] * betan
+            g3 = TI31 * a1[i] + TI32 * a2[i] + TI33 * a3[i] - F3[i] * alphn - F2[i] * betan
+            Z1[i] = g1
+            r2[i] = g2
+            r2[nn + i] = g3
+        lu_solve(w.W, w.piv, Z1)
+        lu_solve(w.W2, w.piv2, r2)
+        for i in range(nn):
+            Z2[i] = r2[i]
+            Z3[i] = r2[nn + i]
+            dyno += (Z1[i] / scal[i]) ** 2 + (Z2[i] / scal[i]) ** 2 + (Z3[i] / scal[i]) ** 2
+        dyno = np.sqrt(dyno / (3 * nn))
+        if not np.isfinite(dyno):
+            return 2, np.inf
+        if newt > 1 and newt < NIT:
+            thq = dyno / dynold
+            theta = thq if newt == 2 else np.sqrt(thq * thqold)
+            thqold = thq
+            if theta < 0.99:
+                faccon = theta / (1.0 - theta)
+                dyth = faccon * dyno * theta ** (NIT - 1 - newt) / fnewt
+                if dyth >= 1.0:  # will not converge in time: smaller step
+                    qnewt = max(1e-4, min(20.0, dyth))
+                    ctl[HHFAC] = 0.8 * qnewt ** (-1.0 / (4.0 + NIT - 1 - newt))
+                    ctl[THETA] = theta
+                    return 3, np.inf
+            else:
+                ctl[HHFAC] = 0.5
+                ctl[THETA] = theta
+                return 3, np.inf
+        dynold = max(dyno, UROUND)
+        for i in range(nn):
+            F1[i] += Z1[i]
+            F2[i] += Z2[i]
+            F3[i] += Z3[i]
+            Z1[i] = T11 * F1[i] + T12 * F2[i] + T13 * F3[i]
+            Z2[i] = T21 * F1[i] + T22 * F2[i] + T23 * F3[i]
+            Z3[i] = T31 * F1[i] + F2[i]
+        if faccon * dyno <= fnewt:
+            break
+    ctl[FACCON] = max(faccon, UROUND) ** 0.8
+    ctl[THETA] = theta
+    ctl[NEWT] = newt
+    # error estimate (Hairer & Wanner IV.8, (8.19)–(8.20)): E1 err = f0 + Σ (dd_i/h) Z_i
+    err = a1
+    hee1, hee2, hee3 = DD1 / h, DD2 / h, DD3 / h
+    for i in range(nn):
+        a2[i] = hee1 * Z1[i] + hee2 * Z2[i] + hee3 * Z3[i]
+        err[i] = a2[i] + w.f0[i]
+        y1[i] = y[i] + Z3[i]
+    lu_solve(w.W, w.piv, err)
+    en = _rms(err, scal)
+    if en >= 1.0 and (w.stats[1] == 0 or ictl[REJECTED] == 1):
+        for i in range(nn):
+            yt[i] = y[i] + err[i]
+        if rhs(t, yt, mem, P, fw) != 0:
+            return 2, np.inf
+        w.stats[0] += 1
+        for i in range(nn):
+            err[i] = fw[i] + a2[i]
+        lu_solve(w.W, w.piv, err)
+        en = _rms(err, scal)
+    return 0, max(en, 1e-10)
+
+
+@njit(cache=True)
+def _rms(e, scal):
+    s = 0.0
+    for i in range(e.shape[0]):
+        s += (e[i] / scal[i]) ** 2
+    return np.sqrt(s / e.shape[0])
+
+
+@njit(cache=True)
+def _quot(en, ctl):
+    fac = min(SAFE, SAFE * (1.0 + 2.0 * NIT) / (ctl[NEWT] + 2.0 * NIT))
+    return max(FACR, min(FACL, en**0.25 / fac))
+
+
+@njit(cache=True)
+def radau5_rejected(h, en, w):
+    """New h after an error-test failure; a Jacobian that is not fresh is renewed."""
+    w.ictl[REJECTED] = 1
+    if w.stats[1] == 0:
+        return 0.1 * h
+    return h / _quot(en, w.ctl)
+
+
+@njit(cache=True)
+def radau5_accepted(h, h_max, en, w, reuse):
+    """New h after an accepted step (Gustafsson's predictive controller), and the Jacobian /
+    LU reuse decision of RADAU5."""
+    ctl, ictl = w.ctl, w.ictl
+    quot = _quot(en, ctl)
+    if w.stats[1] > 1:
+        facgus = (ctl[H_ACC] / h) * (en**2 / ctl[ERR_ACC]) ** 0.25 / SAFE
+        quot = max(quot, max(FACR, min(FACL, facgus)))
+    ctl[H_ACC] = h
+    ctl[ERR_ACC] = max(1e-2, en)
+    hnew = min(h / quot, h_max)
+    if ictl[REJECTED] == 1:
+        hnew = min(hnew, h)
+    ictl[REJECTED] = 0
+    qt = hnew / h
+    if ctl[THETA] <= THET and QUOT1 <= qt <= QUOT2:
+        hnew = h  # keep h: the LU stays valid
+    if ctl[THETA] > THET:
+        ictl[2] = reuse  # AGE: a new Jacobian before the next step
+    return hnew
+
+
+@njit(cache=True)
+def store_polynomial(h, w):
+    """After acceptance: collocation polynomial of the step (dense output, next start)."""
+    K = w.K
+    for i in range(K.shape[1]):
+        z1, z2, z3 = K[0, i], K[1, i], K[2, i]
+        K[6, i] = (z2 - z3) / C2M1
+        ak = (z1 - z2) / C1MC2
+        acont3 = (ak - z1 / C1) / C2
+        K[7, i] = (ak - K[6, i]) / C1M1
+        K[8, i] = K[7, i] - acont3
+    w.ctl[H_OLD] = h
+    w.ictl[HAVE_CONT] = 1
+
+
+@njit(cache=True)
+def write_dense_radau5(t0, t1, y1, K, mem, t_out, iout, Y, MEM):
+    """Outputs in (t0, t1] from the collocation polynomial (order 3 uniformly) [T113]."""
+    h = t1 - t0
+    nn = y1.shape[0]
+    while iout < t_out.shape[0] and t_out[iout] <= t1 + 1e-15 * abs(t1):
+        s = min(max((t_out[iout] - t1) / h, -1.0), 0.0) if h > 0 else 0.0
+        for i in range(nn):
+            Y[iout, i] = y1[i] + s * (K[6, i] + (s - C2M1) * (K[7, i] + (s - C1M1) * K[8, i]))
+        MEM[iout] = mem
+        iout += 1
+    return iout
