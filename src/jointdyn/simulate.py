@@ -120,7 +120,7 @@ class SimConfig:
     n_out: int = 1001
     """number of equally spaced output samples on [0, t_end] (≥ 2)"""
     solver: str = "auto"
-    """a name in ``jointdyn.integrators.SOLVERS``, or ``"auto"``: ``radau5`` when the system has a
+    """a name in ``jointdyn.integrators.SOLVERS``, or ``"auto"``: ``rodas4`` when the system has a
     lubricated journal bearing (stiff film), else ``dopri5``"""
     rtol: float = 1e-8
     """relative tolerance [-]"""
@@ -155,12 +155,12 @@ class SimConfig:
 
 
 def resolve_solver(system: System, name: str) -> str:
-    """``"auto"`` -> ``radau5`` if a journal bearing carries a film (stiff), else ``dopri5``."""
+    """``"auto"`` -> ``rodas4`` if a journal bearing carries a film (stiff), else ``dopri5``."""
     if name != "auto":
         return name
     from .forces.journal import JournalBearing
 
-    return "radau5" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
+    return "rodas4" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
 
 
 def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget):

@@ -19,6 +19,8 @@ import numpy as np
 from numba import njit
 
 from ..forces.elements import NOUT, eval_forces
+from ..forces.journal import JOURNAL
+from ..layout import TYPE
 
 FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.OUT_COLUMNS)
 
@@ -62,16 +64,21 @@ def worst_resolution(ts, ys, mems, P, rtol, atol, idx):
 
 
 def check_force_resolution(ts, ys, mems, eout, P, rtol, atol, n_check: int = 64):
-    """(element index, δF [N], peak |F| [N], time [s]) of the element whose force is least
-    resolved relative to its peak, checked at ``n_check`` evenly spaced samples and at each
-    element's largest-force sample; None if there are no elements or no samples."""
+    """(element index, δF [N], peak |F| [N], time [s]) of the journal element (film, clearance
+    contact) whose force is least resolved relative to its peak, checked at ``n_check`` evenly
+    spaced samples and at each element's largest-force sample; None if there is no journal
+    element or no sample."""
     nt, nf = eout.shape[0], eout.shape[1]
     if nt == 0 or nf == 0:
+        return None
+    journal = P.fint[:, TYPE] == JOURNAL  # the stiff elements (film, contact) the guard is for
+    if not journal.any():
         return None
     F = np.hypot(eout[:, :, FX], eout[:, :, FY])
     idx = np.unique(np.concatenate([np.linspace(0, nt - 1, min(n_check, nt)).astype(np.int64), F.argmax(0)]))
     worst, where = worst_resolution(ts, ys, mems, P, rtol, atol, idx)
     peak = F.max(0)
     ratio = np.where(peak > 0, worst / np.where(peak > 0, peak, 1.0), 0.0)  # unloaded: nothing to resolve
+    ratio = np.where(journal, ratio, -1.0)
     k = int(ratio.argmax())
     return k, float(worst[k]), float(peak[k]), float(ts[where[k]])
