@@ -115,7 +115,6 @@ def run(
     out=None,
     *,
     progress: Callable[[float], None] | None = None,
-    chunks: int | None = None,
     headline: Callable | None = None,
     extra_summary: Callable | None = None,
     title: str = "",
@@ -136,7 +135,6 @@ def run(
     from .options import check_memory
 
     check_memory(system, config.n_out)
-    n_chunks = chunks if chunks is not None else max(1, min(config.n_out - 1, 64))  # [T142]
 
     def on_progress(f: float) -> None:
         interrupts.check()
@@ -144,7 +142,7 @@ def run(
             progress(f)
 
     try:
-        res = simulate(system, config, progress=on_progress, chunks=n_chunks)
+        res = simulate(system, config, progress=on_progress)  # signals every ~0.05 s [T142]
     except SimulationError as err:
         if err.results is not None:
             err.results.meta.update(meta or {})
@@ -225,7 +223,6 @@ def run_slider_crank(
         cfg,
         out,
         progress=progress,
-        chunks=max(1, int(math.ceil(revs * 8))),  # 8 per revolution [T142]
         headline=_slider_crank_headline,
         extra_summary=lambda res, cols: summarize(res, cols, revs),
         title=f"slider-crank, {joint} piston pin",

@@ -191,7 +191,6 @@ def simulate(
     system: System,
     config: SimConfig,
     progress: Callable[[float], object] | None = None,
-    chunks: int = 1,
     step_budget: int | None = None,
     *,
     t0: float = 0.0,
@@ -206,13 +205,12 @@ def simulate(
     The compiled solvers run in slices of ≈ ``SLICE_SECONDS`` wall time (or of ``step_budget``
     step attempts, if given); between slices ``progress(fraction of t_end)`` is called and
     SIGINT/SIGTERM are checked. Slicing never changes the trajectory (all step-control state is
-    carried over). ``chunks`` is accepted for compatibility and has no effect.
+    carried over).
 
     Raises :class:`~jointdyn.errors.Interrupted` (with the partial results and the signal name)
     after SIGINT/SIGTERM, :class:`~jointdyn.errors.SimulationError` carrying the partial
     results if the integration fails.
     """
-    del chunks
     with interrupts.catching():
         y = np.array(system.y0 if y0 is None else y0, dtype=float)
         mem = np.array(system.mem0 if mem0 is None else mem0, dtype=float)
