@@ -241,3 +241,22 @@ def test_fallback_elements_are_named():
     model, _ = load_model(EXAMPLES / "engine_single_cylinder.toml")
     assert fallback_elements(model.compile()) == ["gas"]
     assert fallback_elements(slider_crank("alshaer2005").compile()) == []
+
+
+def test_simulate_with_the_exact_jacobian():
+    """SimConfig(jacobian="exact") feeds the stiff solvers the exact system Jacobian: rodas4 needs
+    far fewer RHS evaluations per accepted step (measured 25 → 7 on this case) at the accuracy of
+    the finite-difference run (both within the tolerance-level error of a converged run)."""
+    from jointdyn import post
+    from jointdyn.simulate import SimConfig, simulate
+
+    system = slider_crank("alshaer2005").compile()
+    ref = simulate(system, SimConfig(t_end=0.25 * REV, n_out=181, rtol=1e-11, atol=1e-14))
+    peak = np.abs(post.driving_moment(ref)).max()
+    per_step = {}
+    for jac in ("finite-differences", "exact"):
+        cfg = SimConfig(t_end=0.25 * REV, n_out=181, solver="rodas4", rtol=1e-8, atol=1e-12, jacobian=jac)
+        res = simulate(system, cfg)
+        assert np.abs(post.driving_moment(res) - post.driving_moment(ref)).max() < 1e-4 * peak
+        per_step[jac] = res.stats["rhs_evaluations"] / res.stats["accepted_steps"]
+    assert per_step["exact"] < per_step["finite-differences"] / 3

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
 
@@ -111,6 +112,9 @@ def _force_resolution_message(system: System, ts, Y, MEM, eout, P, config) -> st
     )
 
 
+JACOBIANS = ("finite-differences", "exact")
+
+
 @dataclass(frozen=True)
 class SimConfig:
     """How to integrate. Times in [s]."""
@@ -134,6 +138,10 @@ class SimConfig:
     """accepted + rejected steps before giving up"""
     baumgarte: float | None = None
     """Baumgarte rate a [1/s] [T10]; None = 0 for projecting solvers, 1000 for scipy ones"""
+    jacobian: str = "finite-differences"
+    """system Jacobian of the compiled stiff solvers (rodas4, ros34pw2, radau5):
+    ``finite-differences`` or ``exact`` (chain rule through the elements' exact Jacobians
+    [T98–T104]; elements without one are differenced, with a warning naming them)"""
 
     def __post_init__(self):
         if not (math.isfinite(self.t_end) and self.t_end > 0):
@@ -152,6 +160,8 @@ class SimConfig:
             raise ValueError(f"SimConfig.max_step = {self.max_step!r} [s]: must be > 0")
         if self.baumgarte is not None and not (math.isfinite(self.baumgarte) and self.baumgarte >= 0):
             raise ValueError(f"SimConfig.baumgarte = {self.baumgarte!r} [1/s]: must be ≥ 0")
+        if self.jacobian not in JACOBIANS:
+            raise ValueError(f"SimConfig.jacobian = {self.jacobian!r}: unknown; valid: {list(JACOBIANS)}")
 
 
 def resolve_solver(system: System, name: str) -> str:
@@ -165,7 +175,7 @@ def resolve_solver(system: System, name: str) -> str:
 
 def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget):
     """Drive a compiled solver in slices of bounded wall time; returns (Work, status)."""
-    w = new_work(method, y0, mem0, t_out[0], t_out, config.first_step)
+    w = new_work(method, y0, mem0, t_out[0], t_out, config.first_step, config.jacobian == "exact")
     status = start(method, P, True, w)
     rtol, atol = method_tolerances(method, config.rtol, config.atol)
     budget = int(step_budget) if step_budget else 16
@@ -234,6 +244,15 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
     a = config.baumgarte if config.baumgarte is not None else (0.0 if projects else 1000.0)
     P = system.packed(a)
     t_out = np.linspace(t_start, t_start + config.t_end, config.n_out)
+    if config.jacobian == "exact":
+        from .forces.element_jacobians import fallback_elements
+
+        fd = fallback_elements(system)
+        if fd:
+            warnings.warn(
+                f"jacobian='exact': no exact Jacobian for elements {fd}; they are differenced numerically",
+                stacklevel=3,
+            )
     t0 = time.perf_counter()
     if solver in METHODS:
         w, status = _integrate_compiled(METHODS[solver], P, y0, mem0, config, t_out, progress, step_budget)
