@@ -19,7 +19,8 @@ from pathlib import Path
 
 import numpy as np
 
-from . import plots, post
+from . import post
+from .reproduce_figures import figures
 from .runs import run_slider_crank
 
 
@@ -93,197 +94,28 @@ def run_case(case: Case, revs: float, progress=None):
     return res, cols, summ
 
 
-def _png(fig) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=130)
-    return buf.getvalue()
+def _csv(header, rows) -> bytes:
+    buf = io.StringIO()
+    w = csv.writer(buf)
+    w.writerow(header)
+    w.writerows(rows)
+    return buf.getvalue().encode("utf-8")
 
 
-PAPER = ("perfect", "dry", "ott", "alshaer2005")
-#: one colour per case, the same in every figure
-COLORS = {"perfect": "k", "dry": "tab:red", "ott": "tab:orange", "alshaer2005": "tab:blue"}
-_MORE = ("tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray")
-
-
-def _colors(names) -> dict[str, str]:
-    """Paper cases keep their colour; the others get distinct ones in order."""
-    extra = iter(_MORE * 3)
-    return {n: COLORS[n] if n in COLORS else next(extra) for n in names}
-
-
-def _last(res, revs: float):
-    """The last revolution (or the whole run when it is shorter)."""
-    return res.last_revolutions(min(1.0, revs))
-
-
-def _deg(res):
-    a = res.crank_angle()
-    return np.degrees(a - a[0])
-
-
-def figures(runs: dict, revs: float) -> dict[str, bytes]:
-    """All report figures as PNG bytes, keyed by file name."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    figs = {}
-    col = _colors(runs)
-    names = [n for n in PAPER if n in runs]
-    last = {n: _last(runs[n][0], revs) for n in runs}
-    one = "last revolution" if revs >= 1 else f"{revs:g} revolution"
-    for n in names:
-        fig, ax = plt.subplots(figsize=(8, 3.8))
-        res = runs[n][0]
-        plots.moment_vs_angle(
-            res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=col[n]
+def csv_files(runs: dict) -> dict[str, bytes]:
+    """``summary.csv`` and one ``<case>.csv`` per case (name -> content)."""
+    out = {
+        "summary.csv": _csv(
+            SUMMARY_COLUMNS, ([_fmt(s.get(c, "")) for c in SUMMARY_COLUMNS] for _, _, s, _ in runs.values())
         )
-        ax.set_title(f"crank driving moment, {revs:g} revolutions — {runs[n][3].label}", fontsize=10)
-        fig.tight_layout()
-        figs[f"moment_{n}.png"] = _png(fig)
-        plt.close(fig)
-    # overlay: smooth cases on their own scale, the dry joint's spikes in a panel of their own
-    smooth = [n for n in names if n != "dry"]
-    panels = 2 if "dry" in names else 1
-    fig, axs = plt.subplots(panels, 1, figsize=(8, 3.6 * panels), sharex=True, squeeze=False)
-    for n in smooth:
-        r = last[n]
-        axs[0, 0].plot(
-            _deg(r),
-            post.driving_moment(r),
-            color=col[n],
-            lw=1.2 if n != "perfect" else 1.8,
-            ls="--" if n == "perfect" else "-",
-            label=runs[n][3].label,
-            zorder=3 if n == "perfect" else 2,
-        )
-    axs[0, 0].set_title(f"crank driving moment, {one}", fontsize=10)
-    if panels == 2:
-        for n in ("perfect", "dry"):
-            if n in runs:
-                r = last[n]
-                axs[1, 0].plot(
-                    _deg(r),
-                    post.driving_moment(r),
-                    color=col[n],
-                    lw=1.0,
-                    ls="--" if n == "perfect" else "-",
-                    label=runs[n][3].label,
-                )
-        axs[1, 0].set_title("dry clearance joint (own scale: impact spikes)", fontsize=10)
-    for k, ax in enumerate(axs[:, 0]):
-        ax.set_ylabel("moment [N·m]")
-        ax.grid(True, alpha=0.3)
-        # the dry spikes reach down on the left half: its legend goes lower right
-        ax.legend(fontsize=8, loc="lower left" if k == 0 else "lower right")
-    axs[-1, 0].set_xlabel(f"crank angle [deg], {one}")
-    axs[-1, 0].set_xlim(0, 360 * min(1.0, revs))
-    plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
-    fig.tight_layout()
-    figs["moment_overlay.png"] = _png(fig)
-    plt.close(fig)
-    beyond = [n for n in runs if n not in names]
-    if beyond:
-        fig, ax = plt.subplots(figsize=(8, 4.4))
-        for n in ["perfect"] + beyond if "perfect" in runs else beyond:
-            r = last[n]
-            ax.plot(
-                _deg(r),
-                post.driving_moment(r),
-                lw=1.0,
-                label=runs[n][3].label,
-                color=col[n],
-                ls="--" if n == "perfect" else "-",
-                zorder=3 if n == "perfect" else 2,
-            )
-        ax.set_title(f"beyond the paper: clearance, viscosity, finite length, shear ({one})", fontsize=10)
-        ax.set_xlabel(f"crank angle [deg], {one}")
-        ax.set_ylabel("moment [N·m]")
-        ax.set_xlim(0, 360 * min(1.0, revs))
-        plots._angle_ticks(ax, 360 * min(1.0, revs))
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8, loc="lower left")
-        fig.tight_layout()
-        figs["moment_beyond.png"] = _png(fig)
-        plt.close(fig)
-    for n in [n for n in runs if "piston_pin" in runs[n][0].journals()]:
-        fig, ax = plt.subplots(figsize=(4.8, 5.2))
-        ex, ey = last[n].orbit("piston_pin", frame="bushing")
-        plots.journal_orbit(ex, ey, ax=ax, frame="rod", color=col[n], label="journal centre")
-        ax.set_title(f"journal centre path, {one}\n{runs[n][3].label}", fontsize=9)
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4, frameon=False)
-        fig.tight_layout()
-        figs[f"orbit_{n}.png"] = _png(fig)
-        plt.close(fig)
-    lub = [n for n in runs if runs[n][3].joint not in ("perfect", "dry")]
-    if lub:
-        fig, ax = plt.subplots(figsize=(8, 4.4))
-        for n in lub:
-            r = last[n]
-            plots.series_vs_angle(
-                np.radians(_deg(r)),
-                r.element("piston_pin", "h_min") * 1e6,
-                "minimum film thickness $h_{min}$ [µm]",
-                ax=ax,
-                label=runs[n][3].label,
-                color=col[n],
-            )
-        ax.set_yscale("log")
-        from matplotlib.ticker import FuncFormatter
-
-        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-        ax.set_xlabel(f"crank angle [deg], {one}")
-        ax.set_title(f"minimum film thickness, {one}", fontsize=10)
-        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
-        fig.tight_layout()
-        figs["film_thickness.png"] = _png(fig)
-        plt.close(fig)
-    imp = [n for n in names if n != "perfect" and "piston_pin" in runs[n][0].journals()]
-    if imp:
-        fig, axs = plt.subplots(len(imp), 1, figsize=(8, 2.4 * len(imp) + 0.6), sharex=True, squeeze=False)
-        for ax, n in zip(axs[:, 0], imp):
-            r = last[n]
-            f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
-            ax.plot(_deg(r), f, color=col[n], lw=0.9)
-            if "perfect" in runs:
-                p = last["perfect"]
-                ax.plot(
-                    _deg(p),
-                    np.hypot(*post.joint_reaction(p, "piston_pin").T),
-                    "k--",
-                    lw=0.8,
-                    label="perfect joint (reaction)",
-                )
-                ax.legend(fontsize=7, loc="upper right")
-            ax.set_title(runs[n][3].label, fontsize=9)
-            ax.set_ylabel("|F| [N]")
-            ax.grid(True, alpha=0.3)
-        axs[-1, 0].set_xlabel(f"crank angle [deg], {one}")
-        axs[-1, 0].set_xlim(0, 360 * min(1.0, revs))
-        plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
-        fig.suptitle("force on the journal (piston pin)", fontsize=10)
-        fig.tight_layout()
-        figs["joint_force.png"] = _png(fig)
-        plt.close(fig)
-    return figs
-
-
-def write_csvs(out: Path, runs: dict) -> None:
-    with open(out / "summary.csv", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(SUMMARY_COLUMNS)
-        for _, _, summ, _ in runs.values():
-            w.writerow([_fmt(summ.get(c, "")) for c in SUMMARY_COLUMNS])
+    }
+    names = ["t", "crank_angle", "crank_moment", "ex_over_c", "ey_over_c", "h_min", "joint_force"]
     for n, (_, cols, _, _) in runs.items():
-        names = ["t", "crank_angle", "crank_moment", "ex_over_c", "ey_over_c", "h_min", "joint_force"]
-        with open(out / f"{n}.csv", "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(names)
-            nt = len(cols["t"])
-            empty = [""] * nt
-            for row in zip(*[cols.get(c, empty) for c in names]):
-                w.writerow([_fmt(v) for v in row])
+        empty = [""] * len(cols["t"])
+        out[f"{n}.csv"] = _csv(
+            names, ([_fmt(v) for v in row] for row in zip(*[cols.get(c, empty) for c in names]))
+        )
+    return out
 
 
 def _short(v):
@@ -415,22 +247,48 @@ of T21/T163; dry contact Lankarani–Nikravesh (T50–T56).</p>
 def reproduce_alshaer2005(
     out: Path, quick: bool = False, beyond: bool = True, progress=None, revs: float | None = None
 ) -> dict:
-    """Run all cases, write the files; returns {case: (results, columns, summary, Case)}."""
-    from .models import slider_crank as sc
+    """Run all cases, write the files; returns {case: (results, columns, summary, Case)}.
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
+    ``out`` is claimed as an output directory of kind ``reproduce``: the files of an earlier
+    reproduction there are replaced, foreign files make it refuse; every file is written
+    atomically and ``manifest.json`` last (status ``interrupted``/``failed`` if a case stops)."""
+    from .rundir import OutputDir
+
     revs = revs if revs is not None else (1.0 if quick else 4.0)
     cases = PAPER_CASES + (BEYOND_CASES if beyond else ())
+    od = OutputDir(out, "reproduce", {"paper": "alshaer2005", "revs": revs, "cases": [c.name for c in cases]})
+    od.claim(overwrite=True)
+    try:
+        runs = _reproduce_into(od, cases, revs, progress)
+    except BaseException as err:
+        from .errors import Interrupted
+
+        od.finish("interrupted" if isinstance(err, (Interrupted, KeyboardInterrupt)) else "failed", str(err))
+        raise
+    od.finish("complete")
+    return runs
+
+
+def _reproduce_into(od, cases, revs, progress) -> dict:
+    from . import atomic
+    from .models import slider_crank as sc
+
+    out = od.path
     runs = {}
     for case in cases:
         cb = (lambda f, c=case: progress(c.name, f)) if progress else None
         res, cols, summ = run_case(case, revs, progress=cb)
         runs[case.name] = (res, cols, summ, case)
-    write_csvs(out, runs)
+
+    def put(name: str, data: bytes) -> None:
+        atomic.write_bytes(out / name, data)
+        od.record(name)
+
+    for name, data in csv_files(runs).items():
+        put(name, data)
     figs = figures(runs, revs)
     for name, png in figs.items():
-        (out / name).write_bytes(png)
+        put(name, png)
     params = {
         "crank": f"{sc.CRANK_LENGTH} m, {sc.CRANK_MASS} kg, {sc.CRANK_INERTIA} kg·m²",
         "rod": f"{sc.ROD_LENGTH} m, {sc.ROD_MASS} kg, {sc.ROD_INERTIA} kg·m²",
@@ -445,12 +303,13 @@ def reproduce_alshaer2005(
         "bearing side": "bushing in the rod eye (body i), journal on the slider (body j)",
         "initial state": "ideal mechanism at crank angle 0, journal centred (e = 0, ė = 0)",
     }
-    (out / "report.html").write_text(report_html(runs, figs, revs, params), encoding="utf-8")
+    put("report.html", report_html(runs, figs, revs, params).encode("utf-8"))
     try:  # the [interactive] extra: zoomable moment curves and orbits in interactive.html
         from .iplots import reproduction_html
 
-        reproduction_html(runs, out / "interactive.html", revs)
+        with od.write("interactive.html") as tmp:
+            reproduction_html(runs, tmp, revs)
     except ImportError:
         pass
-    (out / "summary.md").write_text(summary_markdown(runs) + "\n")
+    put("summary.md", (summary_markdown(runs) + "\n").encode("utf-8"))
     return runs

@@ -34,6 +34,7 @@ LOCK = ".jointdyn.lock"
 OWN_NAMES = {
     "run": ("results.nc", "timeseries.csv", "summary.json", "model.toml", "*.png", "*.gif", "*.mp4"),
     "sweep": ("cases", "sweep.nc", "spec.json", "*.png"),
+    "reproduce": ("*.csv", "*.png", "report.html", "interactive.html", "summary.md"),
 }
 
 
