@@ -170,3 +170,18 @@ def test_animate_mp4(tmp_path):
     r = runner.invoke(app, ["animate", str(out), "--out", str(mp4), "--frames", "6"])
     assert r.exit_code == 0, r.output
     assert mp4.read_bytes()[4:8] == b"ftyp"  # an MP4 container
+
+
+def test_plot_pressure_at_a_crank_angle(tmp_path):
+    out = tmp_path / "lub"
+    r = runner.invoke(
+        app, ["run", "slider-crank", "--joint", "alshaer2005", "--revs", "0.25", "--out", str(out)]
+    )
+    assert r.exit_code == 0, r.output
+    r = runner.invoke(app, ["plot", str(out), "--what", "pressure", "--at", "45"])
+    assert r.exit_code == 0, r.output
+    assert (out / "plot_pressure_45deg.png").stat().st_size > 5000
+    r = runner.invoke(app, ["plot", str(out), "--what", "pressure", "--at", "500"])
+    assert r.exit_code == 2 and "covers" in r.output
+    r = runner.invoke(app, ["plot", str(out), "--what", "pressure"])
+    assert r.exit_code == 2 and "--at" in r.output

@@ -111,3 +111,43 @@ def test_energy_balance_of_the_lubricated_slider_crank_with_shear():
     assert trap(loss)[-1] > 0  # the film dissipates
     # the shear torque does real work here: a noticeable part of the loss (not a no-op)
     assert np.abs(res.element("piston_pin", "friction_torque")).max() > 0.01
+
+
+@pytest.mark.parametrize("film", ["alshaer2005", "short", "finite"])
+def test_film_outputs_over_a_run(film):
+    """post.film_states recovers the element's film state (the film force evaluated from it
+    through the independent Python front film_forces equals the element's output to round-off),
+    and the peak pressure sits on the side of the film that pushes the journal: the force on the
+    journal points away from it (angle between F and the peak's direction > 90°)."""
+    from jointdyn.forces.film_models import film_forces
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # short at L/D = 2
+        sysm = slider_crank(film).compile()
+    res = simulate(sysm, SimConfig(t_end=0.25 * REV, n_out=91, rtol=1e-8))
+    st = post.film_states(res, "piston_pin")
+    el = sysm.elements[0]
+    F = film_forces(
+        film,
+        st["xi"],
+        st["xi_dot"],
+        st["gamma"] + st["phi_bearing"],
+        0.0,
+        st["xi_Omega"] / np.maximum(st["xi"], 1e-300),
+        0.0,
+        el.viscosity,
+        el.length,
+        el.journal_radius,
+        el.clearance,
+    )
+    Fx, Fy = res.element("piston_pin", "Fx"), res.element("piston_pin", "Fy")
+    scale = np.hypot(Fx, Fy).max()
+    sel = st["xi"] > 1e-3  # ξΩ/ξ is how the front takes the rates; exact away from the centre
+    np.testing.assert_allclose(F["Fx"][sel], Fx[sel], atol=1e-9 * scale)
+    np.testing.assert_allclose(F["Fy"][sel], Fy[sel], atol=1e-9 * scale)
+    out = post.film_outputs(res, "piston_pin")
+    assert np.all(out["p_max"] >= 0)
+    loaded = np.hypot(Fx, Fy) > 0.2 * scale
+    peak_dir = np.radians(out["theta_pmax"]) + st["phi_bearing"]
+    cosang = (np.cos(peak_dir) * Fx + np.sin(peak_dir) * Fy) / np.hypot(Fx, Fy)
+    assert np.all(cosang[loaded] < 0)

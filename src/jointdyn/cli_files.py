@@ -77,6 +77,9 @@ def plot_cmd(
         [], help="further run directories drawn on the same axes (repeatable)"
     ),
     element: str = typer.Option(None, help="one journal element (default: all)"),
+    at: float = typer.Option(
+        None, "--at", help="with --what pressure: crank angle [deg] from the run's start"
+    ),
 ):
     """Plot a saved run: driving moment, journal orbit, film thickness, contact force, energy."""
     import matplotlib
@@ -87,8 +90,10 @@ def plot_cmd(
     from . import plots
 
     with _one_line_errors():
+        if what == "pressure":
+            return _pressure_plot(directory, at, element, out)
         if what not in PLOTS:
-            raise ValueError(f"--what {what!r}: valid: {list(PLOTS)}")
+            raise ValueError(f"--what {what!r}: valid: {list(PLOTS) + ['pressure']}")
         if x not in ("angle", "time"):
             raise ValueError(f"--x {x!r}: valid: ['angle', 'time']")
         if frame not in ("bushing", "world"):
@@ -114,6 +119,37 @@ def plot_cmd(
         f = _results_file(directory)
         target = out or f.parent / f"plot_{what}.png"
         _save(fig, target)
+    console.print(f"wrote {escape(str(target))}")
+
+
+def _pressure_plot(directory: Path, at, element, out) -> None:
+    """``jointdyn plot DIR --what pressure --at ANGLE``: the film pressure around a bearing."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from . import post
+    from .forces.journal import JournalBearing
+    from .results import Results
+
+    if at is None or not math.isfinite(at):
+        raise ValueError("--what pressure needs --at ANGLE: the crank angle [deg] of the sample to draw")
+    f = _results_file(directory)
+    _load(f, "a jointdyn results file", ("q", "lam"))
+    res = Results.load(f)
+    bearings = [
+        n for n, e in zip(res.system.element_names, res.system.elements) if isinstance(e, JournalBearing)
+    ]
+    if not bearings:
+        raise ValueError(f"{f}: the run has no lubricated bearing")
+    name = element or bearings[0]
+    if name not in bearings:
+        raise ValueError(f"--element {name!r}: not a lubricated bearing of the run; valid: {bearings}")
+    fig = post.pressure_figure_at(res, name, at)
+    target = out or f.parent / f"plot_pressure_{at:g}deg.png"
+    _save(fig, target)
+    plt.close(fig)
     console.print(f"wrote {escape(str(target))}")
 
 

@@ -61,3 +61,104 @@ def dissipated_energy(res, element: str) -> float:
     """Energy the element removed from the mechanism over the run, −∫ power dt [J]
     (trapezoidal rule on the output samples)."""
     return float(-np.trapezoid(res.element(element, "power"), res.t))
+
+
+def film_states(res, element: str) -> dict:
+    """Film state of a journal bearing at every sample: ``xi`` [-], ``xi_dot`` [1/s],
+    ``xi_Omega`` [rad/s] (Ω = ω_J + ω_B − 2γ̇, [T14]), ``gamma`` [rad] (line of centres relative
+    to the bushing body) and the bushing body's angle ``phi_bearing`` [rad]."""
+    from .forces.journal import CLR, journal_kinematics
+
+    s = res.system
+    k = s.element_names.index(element) if element in s.element_names else res._element(element)[0]
+    fi, fr = s.fint[k], s.freal[k]
+    c = fr[CLR]
+    n = s.n
+    out = {key: np.empty(len(res.t)) for key in ("xi", "xi_dot", "xi_Omega", "gamma", "phi_bearing")}
+    for i in range(len(res.t)):
+        q, qd = res.y[i, :n], res.y[i, n:]
+        ex, ey, edx, edy, _, _, _, _, wi, wj = journal_kinematics(q, qd, fi[1], fi[2], fr)
+        e = float(np.hypot(ex, ey))
+        ux, uy = (ex / e, ey / e) if e > 0 else (1.0, 0.0)
+        phi_b = q[3 * fi[1] + 2] if fi[1] >= 0 else 0.0
+        out["xi"][i] = e / c
+        out["xi_dot"][i] = (ux * edx + uy * edy) / c
+        out["xi_Omega"][i] = e / c * (wj + wi) - 2.0 * (-uy * edx + ux * edy) / c
+        out["gamma"][i] = np.arctan2(ey, ex) - phi_b
+        out["phi_bearing"][i] = phi_b
+    return out
+
+
+def film_outputs(res, element: str) -> dict:
+    """Pressure-related outputs of a lubricated bearing at every sample, from the film model it
+    ran with [T76, T81–T83]: ``p_max`` [Pa], ``theta_pmax`` [deg] (angle of the peak pressure in
+    the bushing frame, from the bushing's x axis, CCW), ``theta_end`` [deg] (film end/rupture,
+    same frame) and ``side_flow`` [m³/s] (short and finite models; NaN for the long models,
+    which have none)."""
+    from .bearing.pi_outputs import long_pi_outputs, short_pi_outputs
+    from .forces.film_finite import finite_outputs
+    from .forces.film_models import FILM_WIDTH, film_model, film_name
+    from .forces.journal import JournalBearing
+    from .layout import params_of
+
+    el = res.system.elements[res._element(element)[0]]
+    if not isinstance(el, JournalBearing):
+        raise ValueError(f"element {element!r} is a {type(el).__name__}, not a lubricated JournalBearing")
+    name, fm = film_name(el.film), film_model(el.film)
+    st = film_states(res, element)
+    mu, R, L, c = el.viscosity, el.journal_radius, el.length, el.clearance
+    p = np.zeros(FILM_WIDTH)
+    p[: len(fm.PARAMS)] = params_of(fm)
+    tab = fm.table(L, R) if hasattr(fm, "table") else None
+    nt = len(res.t)
+    out = {k: np.full(nt, np.nan) for k in ("p_max", "theta_pmax", "theta_end", "side_flow")}
+    for i in range(nt):
+        x, a, b = min(st["xi"][i], 1.0 - 1e-9), st["xi_dot"][i], st["xi_Omega"][i]
+        if name == "finite":
+            pm, tp, te, qs = finite_outputs(x, a, b, mu, R, L, c, p, tab)
+        elif name == "short":
+            pm, tp, _, te, qs = short_pi_outputs(x, a, b, mu, R, L, c)
+        else:  # long models: the π-film's pressure (Ott approximates the same film, [T165])
+            pm, tp, _, te = long_pi_outputs(x, a, b, mu, R, c)
+            qs = np.nan
+        out["p_max"][i], out["side_flow"][i] = pm, qs
+        # θ from the maximum film -> bushing frame: α = θ + γ + π [T76]
+        for key, th in (("theta_pmax", tp), ("theta_end", te)):
+            out[key][i] = np.degrees(np.mod(th + st["gamma"][i] + np.pi, 2 * np.pi))
+    return out
+
+
+def pressure_figure_at(res, element: str, crank_angle_deg: float):
+    """Figure of the film pressure of bearing ``element`` at the sample nearest to the crank
+    angle ``crank_angle_deg`` [deg] (unwrapped from the run's start): mid-plane pressure around
+    the bushing and p(θ, z), from the 2-D Reynolds solver at the bearing's L/D with the run's
+    film state (Swift–Stieber rupture unless the bearing's ``finite`` model uses Gümbel) [T70–T76]."""
+    from .bearing.plot import pressure_figure
+    from .forces.film_models import film_model, film_name
+
+    el = res.system.elements[res._element(element)[0]]
+    ang = np.degrees(res.crank_angle() - res.crank_angle()[0])
+    if not (ang.min() <= crank_angle_deg <= ang.max()):
+        raise ValueError(
+            f"--at {crank_angle_deg!r} [deg]: the run covers {ang.min():.4g} … {ang.max():.4g} deg"
+        )
+    i = int(np.argmin(np.abs(ang - crank_angle_deg)))
+    st = film_states(res, element)
+    fm = film_model(el.film)
+    cav = getattr(fm, "cavitation", "reynolds")
+    title = (
+        f"{element}: film pressure at crank angle {ang[i]:.1f}° (t = {res.t[i] * 1e3:.3f} ms), "
+        f"ξ = {st['xi'][i]:.3f}\nrun with film {film_name(el.film)!r}; pressure from 2-D Reynolds ({cav})"
+    )
+    return pressure_figure(
+        min(st["xi"][i], 0.999),
+        st["xi_dot"][i],
+        st["xi_Omega"][i],
+        el.viscosity,
+        el.journal_radius,
+        el.length,
+        el.clearance,
+        gamma=st["gamma"][i],
+        cavitation=cav,
+        title=title,
+    )
