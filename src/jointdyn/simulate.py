@@ -244,7 +244,7 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
     a = config.baumgarte if config.baumgarte is not None else (0.0 if projects else 1000.0)
     P = system.packed(a)
     t_out = np.linspace(t_start, t_start + config.t_end, config.n_out)
-    if config.jacobian == "exact":
+    if config.jacobian == "exact" and solver in ("rodas4", "ros34pw2", "radau5"):
         from .forces.element_jacobians import fallback_elements
 
         fd = fallback_elements(system)
