@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .dynamics import accelerations
+from .dynamics import accelerations, cholesky_factor, cholesky_substitute
 from .forces.element_jacobians import force_jacobian
 from .forces.elements import NOUT
 from .joints.constraints import (
@@ -140,44 +140,6 @@ def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq
 
 
 @njit(cache=True)
-def _chol_factor(S):
-    """In-place lower Cholesky factor; False if S is not positive definite to working precision."""
-    m = S.shape[0]
-    scale = 0.0
-    for i in range(m):
-        scale = max(scale, abs(S[i, i]))
-    for j in range(m):
-        d = S[j, j]
-        for k in range(j):
-            d -= S[j, k] * S[j, k]
-        if not d > 1e-13 * scale:
-            return False
-        d = np.sqrt(d)
-        S[j, j] = d
-        for i in range(j + 1, m):
-            s = S[i, j]
-            for k in range(j):
-                s -= S[i, k] * S[j, k]
-            S[i, j] = s / d
-    return True
-
-
-@njit(cache=True)
-def _chol_solve(Lf, b):
-    m = Lf.shape[0]
-    for i in range(m):
-        s = b[i]
-        for k in range(i):
-            s -= Lf[i, k] * b[k]
-        b[i] = s / Lf[i, i]
-    for i in range(m - 1, -1, -1):
-        s = b[i]
-        for k in range(i + 1, m):
-            s -= Lf[k, i] * b[k]
-        b[i] = s / Lf[i, i]
-
-
-@njit(cache=True)
 def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
     """Exact Jm = ∂f/∂y (2n×2n) and ft = ∂f/∂t at (t, y) [T101–T104]; same signature and meaning
     as ``integrators.rodas4.jacobian`` (f0, work, fw are unused/scratch). Costs one force
@@ -235,7 +197,7 @@ def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
                     s += J[i, c] * minv[c] * J[j, c]
                 S[i, j] = s
                 S[j, i] = s
-        if not _chol_factor(S):
+        if not cholesky_factor(S):
             return 1
         rhs_c = np.empty(m)
         for col in range(nn + 1):
@@ -244,7 +206,7 @@ def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
                 for c in range(n):
                     s -= J[r, c] * minv[c] * G[c, col]
                 rhs_c[r] = s
-            _chol_solve(S, rhs_c)
+            cholesky_substitute(S, rhs_c)
             for c in range(n):
                 s = G[c, col]
                 for r in range(m):

@@ -68,19 +68,20 @@ def film_states(res, element: str) -> dict:
     ``xi_Omega`` [rad/s] (Ω = ω_J + ω_B − 2γ̇, [T14]), ``gamma`` [rad] (line of centres relative
     to the bushing body) and the bushing body's angle ``phi_bearing`` [rad]."""
     from .forces.journal import CLR, journal_kinematics
+    from .layout import BODY_I, BODY_J
 
     s = res.system
-    k = s.element_names.index(element) if element in s.element_names else res._element(element)[0]
-    fi, fr = s.fint[k], s.freal[k]
+    k = res._element(element)[0]
+    bi, bj, fr = s.fint[k, BODY_I], s.fint[k, BODY_J], s.freal[k]
     c = fr[CLR]
     n = s.n
     out = {key: np.empty(len(res.t)) for key in ("xi", "xi_dot", "xi_Omega", "gamma", "phi_bearing")}
     for i in range(len(res.t)):
         q, qd = res.y[i, :n], res.y[i, n:]
-        ex, ey, edx, edy, _, _, _, _, wi, wj = journal_kinematics(q, qd, fi[1], fi[2], fr)
+        ex, ey, edx, edy, _, _, _, _, wi, wj = journal_kinematics(q, qd, bi, bj, fr)
         e = float(np.hypot(ex, ey))
         ux, uy = (ex / e, ey / e) if e > 0 else (1.0, 0.0)
-        phi_b = q[3 * fi[1] + 2] if fi[1] >= 0 else 0.0
+        phi_b = q[3 * bi + 2] if bi >= 0 else 0.0
         out["xi"][i] = e / c
         out["xi_dot"][i] = (ux * edx + uy * edy) / c
         out["xi_Omega"][i] = e / c * (wj + wi) - 2.0 * (-uy * edx + ux * edy) / c
