@@ -107,7 +107,8 @@ def film_outputs(res, element: str) -> dict:
         raise ValueError(f"element {element!r} is a {type(el).__name__}, not a lubricated JournalBearing")
     name, fm = film_name(el.film), film_model(el.film)
     st = film_states(res, element)
-    mu, R, L, c = el.viscosity, el.journal_radius, el.length, el.clearance
+    mu, R, L = el.viscosity, el.journal_radius, el.length
+    c = el.bearing_radius - el.journal_radius  # the clearance [m]
     p = np.zeros(FILM_WIDTH)
     p[: len(fm.PARAMS)] = params_of(fm)
     tab = fm.table(L, R) if hasattr(fm, "table") else None
