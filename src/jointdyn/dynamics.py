@@ -104,13 +104,11 @@ def _schur(J, minv, m, n):
 def accelerations(t, q, qd, mem, P, qdd, lam, eout):
     """Solve the equations of motion for q̈ and λ at (t, q, q̇) [T10]; fill element outputs.
     Returns OK, SINGULAR or NONFINITE."""
-    minv = P.minv
-    m = P.n_rows
-    ws = P.ws
+    minv, q0_force, cint, creal, fint, freal, tables, m, stab, ws = P
     n = q.shape[0]
     Q = ws[:n]
-    Q[:] = P.q0_force
-    eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout)
+    Q[:] = q0_force
+    eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
     if m > 0:
         o = n
         Phi = ws[o : o + m]
@@ -120,8 +118,8 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
         J = ws[o : o + m * n].reshape((m, n))
         o += m * n
         S = ws[o : o + m * m].reshape((m, m))
-        eval_constraints(t, q, qd, P.cint, P.creal, Phi, J, Phit, gam)
-        a = P.stab[0]
+        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        a = stab[0]
         if a > 0.0:
             for r in range(m):
                 phid = Phit[r]
