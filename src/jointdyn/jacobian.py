@@ -13,8 +13,6 @@ Hessians of [T102, T103] (revolute, translational; angle rows are linear).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
@@ -24,12 +22,11 @@ from .forces.elements import NOUT
 from .joints.constraints import (
     ALPHA,
     ANGLE_DRIVER,
-    AXIS_X,
-    AXIS_Y,
     REVOLUTE,
     ROW,
     TRANSLATIONAL,
     eval_constraints,
+    translational_frame,
 )
 from .kinematics import body_state, point_kinematics
 from .layout import BODY_I, BODY_J, ETA_I, ETA_J, TYPE, XI_I, XI_J
@@ -94,23 +91,9 @@ def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq
                 gq[5] = -wj * wj * (-sjy if row == 0 else sjx)
                 _add_row(Hs, gq, r + row, bi, bj, lam[r + row], qdd, qd, Hlam, Dacc, Dvel, Gq, Gqd)
         elif typ == TRANSLATIONAL:
-            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, XI_I], creal[k, ETA_I])
-            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, XI_J], creal[k, ETA_J])
-            phii = body_state(q, qd, bi)[2]
-            wi = body_state(q, qd, bi)[5]
-            wj = body_state(q, qd, bj)[5]
-            ci = math.cos(phii)
-            si_ = math.sin(phii)
-            nlx = -creal[k, AXIS_Y]
-            nly = creal[k, AXIS_X]
-            nx = ci * nlx - si_ * nly
-            ny = si_ * nlx + ci * nly
-            bnx = -ny
-            bny = nx
-            dx = pjx - pix
-            dy = pjy - piy
-            ddx = vjx - vix
-            ddy = vjy - viy
+            six, siy, sjx, sjy, wi, wj, nx, ny, bnx, bny, dx, dy, ddx, ddy = translational_frame(
+                q, qd, bi, bj, creal[k]
+            )
             zsix, zsiy = -siy, six  # ẑ × s_i
             zsjx, zsjy = -sjy, sjx
             Hs[:, :] = 0.0

@@ -157,6 +157,24 @@ def _add_point_jac(J, r, col_b, sign, sx, sy):
 
 
 @njit(cache=True)
+def translational_frame(q, qd, bi, bj, row):
+    """Geometry of a translational row [T6]: arms s_i, s_j [m], rates ω_i, ω_j [rad/s], the
+    world normal n = A_i(ẑ × axis) and B n = ẑ × n [-], d = P_j − P_i [m] and ḋ [m/s]."""
+    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, row[XI_I], row[ETA_I])
+    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, row[XI_J], row[ETA_J])
+    phii = body_state(q, qd, bi)[2]
+    wi = body_state(q, qd, bi)[5]
+    wj = body_state(q, qd, bj)[5]
+    ci = math.cos(phii)
+    si = math.sin(phii)
+    nlx = -row[AXIS_Y]  # local normal n' = ẑ × axis
+    nly = row[AXIS_X]
+    nx = ci * nlx - si * nly
+    ny = si * nlx + ci * nly
+    return (six, siy, sjx, sjy, wi, wj, nx, ny, -ny, nx, pjx - pix, pjy - piy, vjx - vix, vjy - viy)
+
+
+@njit(cache=True)
 def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
     """Fill Φ, Φ_q (J, zeroed here), Φ_t and γ with Φ_q q̈ = γ [T4–T7]."""
     J[:, :] = 0.0
@@ -180,25 +198,12 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
             gam[r] = wi * wi * six - wj * wj * sjx
             gam[r + 1] = wi * wi * siy - wj * wj * sjy
         elif typ == TRANSLATIONAL:
-            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, XI_I], creal[k, ETA_I])
-            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, XI_J], creal[k, ETA_J])
+            # n = A_i(ẑ × axis), Bn = ẑ × n, d = P_j − P_i  [T6]
+            six, siy, sjx, sjy, wi, wj, nx, ny, bnx, bny, dx, dy, ddx, ddy = translational_frame(
+                q, qd, bi, bj, creal[k]
+            )
             phii = body_state(q, qd, bi)[2]
-            wi = body_state(q, qd, bi)[5]
             phij = body_state(q, qd, bj)[2]
-            wj = body_state(q, qd, bj)[5]
-            ci = math.cos(phii)
-            si = math.sin(phii)
-            # local normal n' = ẑ × axis; n = A_i n'; Bn = B_i n' = ẑ × n  [T6]
-            nlx = -creal[k, AXIS_Y]
-            nly = creal[k, AXIS_X]
-            nx = ci * nlx - si * nly
-            ny = si * nlx + ci * nly
-            bnx = -ny
-            bny = nx
-            dx = pjx - pix
-            dy = pjy - piy
-            ddx = vjx - vix
-            ddy = vjy - viy
             Phi[r] = nx * dx + ny * dy
             Phit[r] = 0.0
             if bj >= 0:
