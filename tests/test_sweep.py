@@ -40,6 +40,9 @@ def test_local_and_dask_executors_give_identical_results(tmp_path):
     assert float(local["peak_moment"].sel(speed=400.0, gravity=0.0)) > 3.5 * float(
         local["peak_moment"].sel(speed=200.0, gravity=0.0)
     )
+    # units travel with the data: metrics and the builder arguments on the axes
+    assert local["peak_moment"].attrs["units"] == "N·m" and local["min_h_min"].attrs["units"] == "m"
+    assert local["speed"].attrs["units"] == "rad/s"
 
 
 def test_failed_case_is_recorded_and_sweep_goes_on(tmp_path):

@@ -34,9 +34,9 @@ from pathlib import Path
 
 import numpy as np
 
-from . import atomic, interrupts
+from . import atomic, interrupts, options
 from .errors import Interrupted
-from .sweep_spec import METRICS, SweepSpec, latin_hypercube, load_sweep, validate
+from .sweep_spec import METRIC_UNITS, METRICS, SweepSpec, latin_hypercube, load_sweep, validate
 
 __all__ = [
     "METRICS",
@@ -292,5 +292,9 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
     if spec.grid and not spec.zipped and not spec.sample:
         keys = list(spec.grid)
         ds = ds.swap_dims(case=keys[0]) if len(keys) == 1 else ds.set_index(case=keys).unstack("case")
+    units = {k: u for k, (_, u) in options.builder_args().items()} | METRIC_UNITS
+    for name in ds.variables:
+        if name in units:
+            ds[name].attrs["units"] = units[name]
     ds.attrs["base"] = json.dumps(spec.base, default=str)
     return ds

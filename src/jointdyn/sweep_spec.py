@@ -19,17 +19,19 @@ import numpy as np
 from . import options
 from .checks import check
 
-METRICS = (
-    "peak_moment",
-    "min_moment",
-    "rms_moment",
-    "max_xi",
-    "min_h_min",
-    "impacts",
-    "energy_dissipated",
-    "wall_time_s",
-    "rhs_evaluations",
-)
+#: the per-case metrics of a sweep and their units (``sweep.nc`` variable attribute ``units``)
+METRIC_UNITS = {
+    "peak_moment": "N·m",
+    "min_moment": "N·m",
+    "rms_moment": "N·m",
+    "max_xi": "-",
+    "min_h_min": "m",
+    "impacts": "-",
+    "energy_dissipated": "J",
+    "wall_time_s": "s",
+    "rhs_evaluations": "-",
+}
+METRICS = tuple(METRIC_UNITS)
 TABLES = ("base", "grid", "zip", "sample", "output", "dask")
 
 
