@@ -9,7 +9,6 @@ recorded as a failed case with its message, and the sweep goes on with the other
 from __future__ import annotations
 
 import itertools
-import tomllib
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,6 +17,7 @@ import numpy as np
 
 from . import options
 from .checks import check
+from .config.locate import read_toml
 
 #: the per-case metrics of a sweep and their units (``sweep.nc`` variable attribute ``units``)
 METRIC_UNITS = {
@@ -102,27 +102,10 @@ def latin_hypercube(sample: dict) -> list[dict]:
     return [{k: float(v) for k, v in zip(names, row)} for row in x]
 
 
-def _read(path: Path) -> dict:
-    try:
-        text = path.read_text(encoding="utf-8").removeprefix("\ufeff")
-    except FileNotFoundError:
-        raise ValueError(f"{path}: no such sweep file") from None
-    except IsADirectoryError:
-        raise ValueError(f"{path}: is a directory, not a sweep file") from None
-    except UnicodeDecodeError as err:
-        raise ValueError(f"{path}: not a UTF-8 text file ({err.reason} at byte {err.start})") from None
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as err:
-        raise ValueError(f"{path}: invalid TOML: {err}") from None
-    except RecursionError:
-        raise ValueError(f"{path}: tables or arrays nested too deeply") from None
-
-
 def load_sweep(path) -> SweepSpec:
     """Read a sweep file; unknown tables/keys are errors naming the valid ones."""
     path = Path(path)
-    doc = _read(path)
+    doc, _ = read_toml(path, "sweep file")
     if set(doc) - set(TABLES):
         raise ValueError(
             f"{path}: unknown table(s) {sorted(set(doc) - set(TABLES))}; valid: {sorted(TABLES)}"

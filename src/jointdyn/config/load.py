@@ -14,7 +14,6 @@ import math
 import re
 import statistics
 import tomllib
-from pathlib import Path
 
 import pydantic
 
@@ -24,7 +23,7 @@ from ..forces.elements import FORCE_ELEMENTS
 from ..joints.constraints import CONSTRAINTS
 from ..model import GROUND, Model
 from ..simulate import SimConfig
-from .locate import _Context, _key_path, toml_error
+from .locate import _Context, _key_path, read_toml
 from .schema import LAW_FIELDS, NAME_FIELDS, TOP_LEVEL, Schema, _validator_annotation, schemas, type_name
 
 
@@ -387,25 +386,6 @@ def apply_overrides(doc: dict, overrides=()) -> dict:
     return doc
 
 
-# -- reading -----------------------------------------------------------------------------------
-def _read(path) -> tuple[dict, str]:
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8").removeprefix("\ufeff")
-    except FileNotFoundError:
-        raise ModelError(f"{path}: no such model file") from None
-    except IsADirectoryError:
-        raise ModelError(f"{path}: is a directory, not a model file") from None
-    except UnicodeDecodeError as err:
-        raise ModelError(f"{path}: not a UTF-8 text file ({err.reason} at byte {err.start})") from None
-    try:
-        return tomllib.loads(text), text
-    except tomllib.TOMLDecodeError as err:
-        raise toml_error(path, text, err) from None
-    except RecursionError:
-        raise ModelError(f"{path}: tables or arrays nested too deeply to be a model file") from None
-
-
 def load_model(path, overrides=(), assemble: bool = True) -> tuple[Model, SimConfig]:
     """Read a TOML model file (plus dotted ``key=value`` overrides) into (Model, SimConfig).
 
@@ -413,7 +393,7 @@ def load_model(path, overrides=(), assemble: bool = True) -> tuple[Model, SimCon
     allowed range or valid keys. With ``assemble`` the model is assembled once to check that
     it can be (a sweep's up-front check skips it: the case's run assembles it).
     """
-    doc, text = _read(path)
+    doc, text = read_toml(path)
     doc = apply_overrides(doc, overrides)
     return build(doc, str(path), text, _overridden(overrides), assemble)
 
@@ -421,7 +401,7 @@ def load_model(path, overrides=(), assemble: bool = True) -> tuple[Model, SimCon
 def load_system(path, overrides=()):
     """Like :func:`load_model`, returning ``(Model, System, SimConfig)``: the assembly check
     and the run share one compilation."""
-    doc, text = _read(path)
+    doc, text = read_toml(path)
     doc = apply_overrides(doc, overrides)
     return _build(doc, str(path), text, _overridden(overrides), True)
 

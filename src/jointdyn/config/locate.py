@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import re
 import tomllib
+from pathlib import Path
 
 from ..errors import ModelError
 
@@ -101,3 +102,23 @@ def toml_error(path, text: str, err: tomllib.TOMLDecodeError) -> ModelError:
         bare = f"duplicate name: TOML forbids defining a key or table twice ({bare})"
     loc = f"{path}:{line}" if line is not None else f"{path}"
     return ModelError(" ".join(f"{loc}: {key}invalid TOML: {bare}".split()))
+
+
+def read_toml(path, what: str = "model file") -> tuple[dict, str]:
+    """Read a UTF-8 TOML file (``what``: "model file", "sweep file") -> (document, text); every
+    failure is one :class:`ModelError` line naming the file (and line and key for syntax errors)."""
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8").removeprefix("\ufeff")
+    except FileNotFoundError:
+        raise ModelError(f"{path}: no such {what}") from None
+    except IsADirectoryError:
+        raise ModelError(f"{path}: is a directory, not a {what}") from None
+    except UnicodeDecodeError as err:
+        raise ModelError(f"{path}: not a UTF-8 text file ({err.reason} at byte {err.start})") from None
+    try:
+        return tomllib.loads(text), text
+    except tomllib.TOMLDecodeError as err:
+        raise toml_error(path, text, err) from None
+    except RecursionError:
+        raise ModelError(f"{path}: tables or arrays nested too deeply to be a {what}") from None
