@@ -213,6 +213,7 @@ class _DryState:
         self.dd_minus = None  # latched deltadot at onset (None: not in contact at last step end)
         self.impacts = 0
         self.max_pen = 0.0
+        self.first_pen = 0.0  # largest penetration of the first contact episode [m]
         self.calls = 0
 
     def force(self, mbs, t, item, e, edot, stiffness, damping, offset):
@@ -239,6 +240,8 @@ class _DryState:
             if self.dd_minus is None:
                 self.impacts += 1
                 self.dd_minus = (edot[0] * e[0] + edot[1] * e[1]) / d
+            if self.impacts == 1:
+                self.first_pen = max(self.first_pen, delta)
         else:
             self.dd_minus = None
 
@@ -307,6 +310,7 @@ def _run(
         "steps": hd["n_steps"],
         "max_penetration": None if st is None else st.max_pen,
         "impacts": None if st is None else st.impacts,
+        "first_penetration": None if st is None else st.first_pen,
         "t_steps": ts,
         "crank_moment_steps": moment_steps,
     }
