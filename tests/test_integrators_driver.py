@@ -107,8 +107,7 @@ def test_signal_stops_run_with_partial_results(sig, joint, solver):
     assert word == "interrupted" and name == signal.Signals(sig).name
     assert int(status) == INTERRUPTED
     assert 0 < float(t) < 500 * 2 * np.pi / sc.SPEED
-    if solver != "scipy-radau":  # solve_ivp keeps no outputs of the segment it was in
-        assert int(n) > 1 and float(t_last) <= float(t)
+    assert int(n) > 1 and float(t_last) <= float(t)  # the samples computed so far are kept
     # one compiled call lasts ≈ 0.05 s (simulate.SLICE_SECONDS); allow for a loaded 2-core machine
     assert float(t_done) - t_sent < 2.0
 
@@ -128,3 +127,23 @@ def test_interrupted_in_process(monkeypatch):
     assert e.signal == "SIGTERM" and e.results.status == INTERRUPTED
     assert 0.2 * cfg.t_end < e.t < cfg.t_end
     assert e.results.t[-1] <= e.t and np.isfinite(e.results.y).all()
+
+
+def test_scipy_path_keeps_the_samples_before_an_interrupt():
+    """solve_ivp is cut by a terminal event at the step where the stop is seen: every sample
+    computed before it is kept, identical to the uninterrupted run's."""
+    system = sc.slider_crank("ott").compile()
+    cfg = slider_crank_config("ott", 2.0, solver="scipy-radau")  # long enough for several reports
+    full = simulate(system, cfg)
+
+    def progress(f):
+        if 0.3 < f < 1.0:
+            os.kill(os.getpid(), signal.SIGTERM)
+
+    with pytest.raises(Interrupted) as ei:
+        simulate(system, cfg, progress=progress)
+    part = ei.value.results
+    n = len(part.t)
+    assert part.status == INTERRUPTED and 0.3 * cfg.t_end < ei.value.t < cfg.t_end
+    assert 0.3 * len(full.t) < n < len(full.t) and part.t[-1] <= ei.value.t
+    assert np.array_equal(part.y, full.y[:n]) and np.array_equal(part.t, full.t[:n])

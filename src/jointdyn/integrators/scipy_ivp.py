@@ -20,29 +20,23 @@ from ..layout import BODY_I, BODY_J, TYPE
 from .common import INTERRUPTED, OK, RHS_FAILED, accept_hooks
 
 
-class _Stop(Exception):
-    """Raised inside the right-hand side when ``stop()`` says the run must end."""
-
-
 def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.inf, stop=None):
     """Integrate with ``solve_ivp``; same return tuple as the compiled integrators (accepted and
-        rejected step counts are not reported by ``solve_ivp`` and stay 0). ``stop(t)`` is polled at
-        every right-hand side evaluation; when it returns True the run ends with status INTERRUPTED
-        (outputs of the current event segment are lost: ``solve_ivp`` returns none on an error; the
-    reported time is that of the last right-hand side evaluation)."""
+    rejected step counts are not reported by ``solve_ivp`` and stay 0). ``stop(t)`` is polled
+    after every step (a terminal event); when it returns True the run ends with status
+    INTERRUPTED at the start of that step, keeping every output sample computed before it."""
     nn = y0.shape[0]
     n = nn // 2
     fint, freal = P.fint, P.freal
     mem = mem0.copy()
     stats = np.zeros(4, dtype=np.int64)
     status = [OK]
-    t_stop = [t0]  # time of the right-hand side evaluation at which stop() said yes
+    t_stop = [t0]  # where the run stopped when stop() said yes
     contact = [k for k in range(fint.shape[0]) if fint[k, TYPE] == JOURNAL and fint[k, CONTACT] != NO_CONTACT]
 
+    stopped = [False, np.inf]  # stop() said yes; the time the step is cut at
+
     def f(t, y):
-        if stop is not None and stop(t):
-            t_stop[0] = t
-            raise _Stop
         out = np.empty_like(y)
         if rhs(t, y, mem, P, out) != 0:
             status[0] = RHS_FAILED
@@ -59,6 +53,15 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
         ev.direction = 1.0
         return ev
 
+    def stop_event(t, y):
+        # -1 until stop() says yes at a step end t_s; then t - t_s⁻ (one ulp before t_s), which
+        # changes sign inside the step just taken, so solve_ivp ends it there with its samples
+        if not stopped[0] and stop is not None and stop(t):
+            stopped[0], stopped[1] = True, np.nextafter(t, -np.inf)
+        return t - stopped[1] if stopped[0] else -1.0
+
+    stop_event.terminal = True
+    stop_event.direction = 1.0
     events = [make_event(k) for k in contact]
     Y = np.zeros((len(t_out), nn))
     MEM = np.zeros((len(t_out),) + mem.shape)
@@ -69,25 +72,24 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
     t, y = t0, y0.copy()
     first = None
     while t < t_out[-1] and status[0] == OK:
+        if stopped[0]:  # said between two segments (e.g. at a contact event)
+            status[0], t_stop[0] = INTERRUPTED, t
+            break
         te = t_out[iout:]
         # after an event restart with a small first step: scipy's initial-step heuristic would
         # otherwise jump deep into the stiff contact and an explicit method can blow up
-        try:
-            sol = solve_ivp(
-                f,
-                (t, t_out[-1]),
-                y,
-                method=method,
-                t_eval=te,
-                rtol=rtol,
-                atol=atol,
-                max_step=max_step,
-                events=events or None,
-                first_step=first,
-            )
-        except _Stop:
-            status[0] = INTERRUPTED
-            break
+        sol = solve_ivp(
+            f,
+            (t, t_out[-1]),
+            y,
+            method=method,
+            t_eval=te,
+            rtol=rtol,
+            atol=atol,
+            max_step=max_step,
+            events=[*events, stop_event],
+            first_step=first,
+        )
         first = 1e-9 * max(1.0, abs(t_out[-1]))
         stats[0] += sol.nfev
         stats[3] += getattr(sol, "njev", 0)
@@ -105,6 +107,9 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
             break
         if not sol.success:
             status[0] = RHS_FAILED
+            break
+        if sol.status == 1 and len(sol.t_events[-1]):  # stop() said yes during the last step
+            status[0], t_stop[0] = INTERRUPTED, float(sol.t_events[-1][0])
             break
         if sol.status == 1:  # an event: advance memory at the event state, restart after it
             k_ev = next(i for i, e in enumerate(sol.t_events) if len(e))
