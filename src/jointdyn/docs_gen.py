@@ -207,12 +207,19 @@ def validation_table() -> str:
     return "\n".join(lines)
 
 
+def _butenschoen_table() -> str:
+    from .bearing.validation import butenschoen_table
+
+    return butenschoen_table(ROOT / "tests" / "data" / "butenschoen_1976.csv")
+
+
 def _blocks_now(runs, ds) -> dict[str, str]:
     return {
         "reproduce-table": reproduce_table(runs),
         "reproduce-claims": reproduce_claims(runs),
         "sweep-claims": sweep_claims(ds),
         "validation-table": validation_table(),
+        "butenschoen-table": _butenschoen_table(),
     }
 
 

@@ -1,5 +1,5 @@
-"""Comparison of the design table with the published Raimondi–Boyd (1958) tables [T77]:
-used by the validation tests and the docs page's figure."""
+"""Comparison of the design table with the published Raimondi–Boyd (1958) tables [T77] and
+Butenschön's (1976) finite-bearing table [T84]: used by the validation tests and the docs page."""
 
 from __future__ import annotations
 
@@ -55,6 +55,68 @@ def compare(published: dict, cavitation: str = "reynolds") -> dict:
                     err = np.where(ref != 0.0, got / np.where(ref != 0.0, ref, 1.0) - 1.0, got)
             res[ld][c] = (got, ref, err)
     return res
+
+
+def load_butenschoen(path: str | Path) -> dict:
+    """{L/D: {"eps", "So", "beta_deg", "Q": array}} from the Butenschön CSV ('#' comment lines;
+    bd written as '1', '1/2', '1/2.5', ...) [T84]."""
+    with open(path) as fh:
+        rows = list(csv.DictReader(line for line in fh if not line.startswith("#")))
+    out: dict = {}
+    for r in rows:
+        num, _, den = r["bd"].partition("/")
+        d = out.setdefault(float(num) / float(den or 1.0), {})
+        for k in ("eps", "So", "beta_deg", "Q"):
+            d.setdefault(k, []).append(float(r[k]))
+    return {ld: {k: np.array(v) for k, v in d.items()} for ld, d in out.items()}
+
+
+def butenschoen_quantities(tab: dict) -> dict:
+    """Butenschön's variables from a :func:`bearing_table` result [T84]: So = 1/(2πS),
+    β = attitude [deg], Q = Q_s/(R²cω) = (flow variable)(side-flow ratio)(L/D)/π."""
+    return {
+        "So": 1.0 / (2.0 * math.pi * tab["sommerfeld"]),
+        "beta_deg": tab["attitude_deg"],
+        "Q": tab["flow_variable"] * tab["side_flow_ratio"] * tab["ld"] / math.pi,
+    }
+
+
+def compare_butenschoen(published: dict, cavitation: str = "reynolds", mesh=None) -> dict:
+    """{L/D: {column: (computed, published, error, rounding)}} for So, beta_deg, Q [T84]: error
+    relative (β absolute [deg]); rounding = half a unit of the last printed digit, relative to the
+    published value (β: absolute)."""
+    res: dict = {}
+    for ld, pub in published.items():
+        kw = {} if mesh is None else {"mesh": mesh}
+        got = butenschoen_quantities(bearing_table("finite", cavitation, ld, pub["eps"], **kw))
+        res[ld] = {}
+        for c, half in (("So", 5e-5), ("beta_deg", 5e-4), ("Q", 5e-5)):
+            ref = pub[c]
+            if c == "beta_deg":
+                res[ld][c] = (got[c], ref, got[c] - ref, np.full(ref.shape, half))
+            else:
+                res[ld][c] = (got[c], ref, got[c] / ref - 1.0, half / ref)
+    return res
+
+
+def butenschoen_table(path: str | Path) -> str:
+    """Markdown table of max / mean errors against Butenschön's table per L/D [T84] (docs page)."""
+    res = compare_butenschoen(load_butenschoen(path))
+    names = {1.0: "1", 0.5: "1/2", 0.4: "1/2.5", 1 / 3: "1/3", 0.25: "1/4", 0.2: "1/5", 1 / 6: "1/6", 0.125: "1/8"}
+    lines = [
+        "| L/D | So max / mean | β max / mean [°] | Q max / mean | So max beyond rounding |",
+        "|---|---|---|---|---|",
+    ]
+    for ld in sorted(res, reverse=True):
+        r = res[ld]
+        so, b, q = (np.abs(r[c][2]) for c in ("So", "beta_deg", "Q"))
+        beyond = np.max(np.maximum(so - r["So"][3], 0.0))
+        lines.append(
+            f"| {names.get(ld, f'{ld:.4g}')} | {100 * so.max():.2g} % / {100 * so.mean():.2g} % | "
+            f"{b.max():.2g} / {b.mean():.2g} | {100 * q.max():.2g} % / {100 * q.mean():.2g} % | "
+            f"{100 * beyond:.2g} % |"
+        )
+    return "\n".join(lines)
 
 
 def plot_validation(published_path: str | Path, out_png: str | Path) -> None:
