@@ -30,7 +30,11 @@ def long_closed_form(e: float, film: str) -> dict:
     dft = 6.0 * PI * (2.0 - e * e + 2.0 * e**4) / (q * q * w**1.5)
     # derivatives in ξ̇ (A) and X = ξΩ at ξ̇ = 0
     fr_a = -6.0 * PI / w**1.5
-    ft_a = {"pi": 12.0 * e / w, "ott": 18.0 * PI * e / (q * w), "clipped": 30.0 * e / (w * (1.0 + 1.5 * e * e))}[film]
+    ft_a = {
+        "pi": 12.0 * e / w,
+        "ott": 18.0 * PI * e / (q * w),
+        "clipped": 30.0 * e / (w * (1.0 + 1.5 * e * e)),
+    }[film]
     fr_x, ft_x = -12.0 * e / (q * w), 6.0 * PI / (q * math.sqrt(w))
     # (u, t) frame: u along the line of centres, t = ẑ × u; c = 1
     K = np.array([[-dfr, ft / e], [-dft, -fr / e]])

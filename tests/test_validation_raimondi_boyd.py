@@ -133,7 +133,10 @@ def test_1958_outlier_richardson():
     Butenschön's grid error (0.5 %) of his value, and off RB's by more than their rounding
     (0.5 %) plus that grid error."""
     ld, e = OUTLIER
-    S = [bearing_table("finite", "reynolds", ld, [e], mesh=(144 * k, 16 * k))["sommerfeld"][0] for k in (1, 2, 4)]
+    S = [
+        bearing_table("finite", "reynolds", ld, [e], mesh=(144 * k, 16 * k))["sommerfeld"][0]
+        for k in (1, 2, 4)
+    ]
     p = math.log2((S[0] - S[1]) / (S[1] - S[2]))
     assert abs(p - 2) < 0.2, p
     S_inf = S[2] + (S[2] - S[1]) / (2**p - 1)

@@ -14,7 +14,7 @@ def __getattr__(name: str):
 
         return getattr(design, name)
     if name == "CAVITATION":
-        from .lcp import CAVITATION
+        from .cavitation import names
 
-        return CAVITATION
+        return names()
     raise AttributeError(f"module 'jointdyn.bearing' has no attribute {name!r}")

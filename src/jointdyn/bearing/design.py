@@ -17,8 +17,8 @@ import math
 import numpy as np
 
 from . import film as fm
+from .cavitation import check_cavitation
 from .fv import DEFAULT_MESH, check_ld, check_xi
-from .lcp import check_cavitation
 from .long_short import long_steady, short_steady
 
 #: the columns of :func:`bearing_table`, in order
@@ -54,6 +54,10 @@ def _check_model(model, cavitation):
     check_cavitation(cavitation)
     if model == "short" and cavitation != "gumbel":
         raise ValueError(f"cavitation = {cavitation!r} with model 'short': Ocvirk's film allows only gumbel")
+    if model == "long" and cavitation not in ("gumbel", "reynolds"):
+        raise ValueError(
+            f"cavitation = {cavitation!r} with model 'long': closed forms exist for gumbel and reynolds only"
+        )
 
 
 def finite_steady(eps: float, ld: float, cavitation: str = "reynolds", mesh=DEFAULT_MESH, cavitated=None):
@@ -80,7 +84,7 @@ def finite_steady(eps: float, ld: float, cavitation: str = "reynolds", mesh=DEFA
         "theta_rupture": the,
         "residual": f.residual,
         "iterations": f.iterations,
-        "cavitated": (f.P.ravel() <= 0.0) if cavitation == "reynolds" else None,
+        "cavitated": f.state,  # warm start of the next ε (the condition's own state)
     }
     return out
 

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .cavitation import condition
 from .fv import DEFAULT_MESH, FVProblem, assemble, check_ld, check_xi, theta_map
-from .lcp import check_cavitation, full_film, residual, solve_lcp
 
 
 @dataclass(frozen=True)
@@ -24,8 +24,11 @@ class Film:
     prob      the discretised problem (:class:`FVProblem`)
     P         nondimensional pressure P ≥ 0 on the half bearing, shape (nt, nz) [-]
     fixed     nodes held at P = 0 by a supply line (None for a periodic film)
-    residual  complementarity residual of the solution [T72] [-] (0 for ``gumbel``)
-    iterations active-set iterations [-]
+    residual  the condition's convergence measure (complementarity residual for ``reynolds``
+              [T72], 0 for ``gumbel``) [-]
+    iterations solver iterations [-]
+    state     the condition's warm start for a neighbouring solve (``reynolds``: cavitated set)
+    fill      fill fraction (nt, nz) of a mass-conserving condition, None otherwise [-]
     """
 
     prob: FVProblem
@@ -33,6 +36,8 @@ class Film:
     fixed: np.ndarray | None
     residual: float
     iterations: int
+    state: object = None
+    fill: np.ndarray | None = None
 
 
 def solve(
@@ -49,27 +54,25 @@ def solve(
 
     xi          eccentricity ratio, 0 ≤ ξ < 1 [-]
     lam         L/D > 0 [-]
-    cavitation  "gumbel" (negative full-film pressure clipped) or "reynolds" (Swift–Stieber LCP)
+    cavitation  a registered condition (:mod:`.cavitation`): "gumbel" (negative full-film
+                pressure clipped), "reynolds" (Swift–Stieber LCP), ...
     feed        True: P = 0 on the line θ = 0 (lubricant supplied at the maximum film, the
                 Raimondi–Boyd assumption for the steady 360° bearing) [T73]; False: periodic film
     mesh        (cells around, cells on the half length) [-]
-    cavitated   optional warm start for the active set (a previous solution's cavitated mask)
+    cavitated   optional warm start (a previous solution's ``state``)
     """
     check_xi(xi)
     check_ld(lam)
-    check_cavitation(cavitation)
+    cond = condition(cavitation)
     nt, nz = mesh
     prob = assemble(xi, lam, nt, nz)
-    b = A * prob.bA + B * prob.bB
     fixed = None
     if feed:
-        fixed = np.zeros(b.size, bool)
+        fixed = np.zeros(nt * nz, bool)
         fixed[:nz] = True  # node row i = 0 is θ = 0
-    if cavitation == "gumbel":
-        P = np.maximum(full_film(prob.M, b, fixed), 0.0)
-        return Film(prob, P.reshape(nt, nz), fixed, 0.0, 1)
-    P, cav, it = solve_lcp(prob.M, b, fixed, cavitated)
-    return Film(prob, P.reshape(nt, nz), fixed, residual(prob.M, b, P, fixed), it)
+    s = cond.solve(prob, A, B, fixed, cavitated)
+    fill = None if s.fill is None else s.fill.reshape(nt, nz)
+    return Film(prob, s.P.reshape(nt, nz), fixed, s.residual, s.iterations, s.state, fill)
 
 
 def _weights(f: Film):
@@ -148,8 +151,8 @@ def rupture_of(theta: np.ndarray, row: np.ndarray, cavitation: str = "reynolds")
     """Film rupture angle [rad] in (0, 2π) of a periodic row of pressures at the nodes θ: the
     end of the pressurised arc that contains the peak [T76]. Between the last pressurised node
     and the first ambient one, P is extrapolated to zero from the last two pressurised nodes —
-    linearly in √P for ``reynolds`` (P ∝ (θ_e − θ)² at a rupture with ∂P/∂θ = 0), linearly in P
-    for ``gumbel``. nan if the row has no ambient node."""
+    linearly in P^(1/k), k the condition's ``rupture_exponent`` (``reynolds``: k = 2, P ∝
+    (θ_e − θ)² at a rupture with ∂P/∂θ = 0; ``gumbel``: k = 1). nan if the row has no ambient node."""
     k = int(np.argmax(row))
     th = np.unwrap(np.roll(theta, -k))
     r = np.roll(row, -k)
@@ -157,7 +160,8 @@ def rupture_of(theta: np.ndarray, row: np.ndarray, cavitation: str = "reynolds")
     if zero.size == 0 or zero[0] < 3:
         return float("nan")
     j = int(zero[0])
-    g = np.sqrt(r) if cavitation == "reynolds" else r
+    k = condition(cavitation).rupture_exponent
+    g = np.sqrt(r) if k == 2.0 else r ** (1.0 / k)
     x1, x2, y1, y2 = th[j - 2], th[j - 1], g[j - 2], g[j - 1]
     xe = x2 + y2 * (x2 - x1) / (y1 - y2) if y1 > y2 else th[j]
     return float(np.mod(min(xe, th[j]), 2.0 * np.pi))

@@ -1,6 +1,6 @@
-"""Cavitation conditions as complementarity problems on the finite-volume system [T72].
+"""Solvers behind the cavitation conditions of :mod:`.cavitation` on the finite-volume system [T72].
 
-* ``gumbel``: full-film solve M P = b, negative pressures set to ambient afterwards.
+* ``gumbel``: full-film solve M P = b (:func:`full_film`), negative pressures set to ambient afterwards.
 * ``reynolds`` (Swift–Stieber): the linear complementarity problem
   P ≥ 0, w = M P − b ≥ 0, Pᵀw = 0, solved by the primal–dual active-set method (Hintermüller,
   Ito & Kunisch, SIAM J. Optim. 13 (2002) 865), finite termination for M-matrices. Convergence
@@ -16,14 +16,6 @@ import numpy as np
 from numba import njit
 from scipy.sparse import csr_matrix
 from scipy.sparse.linalg import splu
-
-#: cavitation conditions; "jfo" (mass-conserving Elrod/JFO) is reserved for a later issue
-CAVITATION = ("gumbel", "reynolds")
-
-
-def check_cavitation(cavitation) -> None:
-    if cavitation not in CAVITATION:
-        raise ValueError(f"cavitation = {cavitation!r}: must be one of {', '.join(CAVITATION)}")
 
 
 def full_film(M: csr_matrix, b: np.ndarray, fixed=None) -> np.ndarray:

@@ -13,8 +13,8 @@ import warnings
 from scipy.integrate import IntegrationWarning, quad
 from scipy.optimize import brentq
 
+from .cavitation import check_cavitation
 from .fv import check_ld, check_xi
-from .lcp import check_cavitation
 
 _Q = {"epsabs": 1e-14, "epsrel": 1e-12, "limit": 200}
 
@@ -46,6 +46,10 @@ def long_steady(eps: float, lam: float, cavitation: str = "reynolds") -> dict:
     check_xi(eps)
     check_ld(lam)
     check_cavitation(cavitation)
+    if cavitation not in ("gumbel", "reynolds"):
+        raise ValueError(
+            f"cavitation = {cavitation!r}: the long bearing has closed forms for gumbel and reynolds only"
+        )
     if cavitation == "reynolds":
         te = long_reynolds_end(eps)
         hs = 1.0 + eps * math.cos(te)

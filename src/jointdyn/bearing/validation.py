@@ -102,7 +102,8 @@ def compare_butenschoen(published: dict, cavitation: str = "reynolds", mesh=None
 def butenschoen_table(path: str | Path) -> str:
     """Markdown table of max / mean errors against Butenschön's table per L/D [T84] (docs page)."""
     res = compare_butenschoen(load_butenschoen(path))
-    names = {1.0: "1", 0.5: "1/2", 0.4: "1/2.5", 1 / 3: "1/3", 0.25: "1/4", 0.2: "1/5", 1 / 6: "1/6", 0.125: "1/8"}
+    names = {1.0: "1", 0.5: "1/2", 0.4: "1/2.5", 1 / 3: "1/3", 0.25: "1/4", 0.2: "1/5", 1 / 6: "1/6"}
+    names[0.125] = "1/8"
     lines = [
         "| L/D | So max / mean | β max / mean [°] | Q max / mean | So max beyond rounding |",
         "|---|---|---|---|---|",

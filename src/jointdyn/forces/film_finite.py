@@ -74,29 +74,37 @@ def unit_forces(th, zeta, PA, PB, psi):
     return sp @ np.cos(th), sp @ np.sin(th)
 
 
-CAVITATION = ("gumbel", "reynolds")
 #: default cavitation condition of the ``finite`` film in dynamics: ``gumbel`` (see [T80])
 DEFAULT_CAVITATION = "gumbel"
 
 
-def _builder_hash() -> str:
-    """Hash of the table builder's sources (this file, the FV assembly and the LCP solver): any
-    change of the builder invalidates the cached tables [T80]."""
+def _builder_hash(cavitation: str = DEFAULT_CAVITATION) -> str:
+    """Hash of the table builder's sources (this file, the FV assembly, the LCP solvers, the
+    cavitation registry and the module of the condition's class): any change of the builder
+    invalidates the cached tables [T80, T88]."""
+    from ..bearing import cavitation as cv
     from ..bearing import fv, lcp
 
     h = hashlib.sha1()
-    for mod in (__file__, fv.__file__, lcp.__file__):
-        h.update(Path(mod).read_bytes())
+    files = [Path(__file__), Path(fv.__file__), Path(lcp.__file__), Path(cv.__file__)]
+    src = cv.source_file(cavitation)
+    if src is not None and src.is_file() and src not in files:
+        files.append(src)
+    for mod in files:
+        h.update(mod.read_bytes())
     return h.hexdigest()[:12]
 
 
-def _reynolds_unit(xi: float, lam: float, psi: np.ndarray, mesh=(96, 12)) -> np.ndarray:
+def _fv_unit(xi: float, lam: float, psi: np.ndarray, cavitation: str, mesh=(96, 12)) -> np.ndarray:
     """Columns (f_r, f_t, P̂_max, θ_pmax, θ_rupture, side flow) per ψ for unit (A, B) =
-    (sin ψ, cos ψ) with the Swift–Stieber condition on a periodic film (no supply line): one LCP
-    per ψ (active set warm-started from the neighbouring ψ) on the FV mesh [T72, T80, T83]."""
+    (sin ψ, cos ψ) with a registered cavitation condition on a periodic film (no supply line):
+    one solve per ψ, warm-started from the neighbouring ψ (``reynolds``: the active set), on the
+    FV mesh [T72, T80, T83, T88]."""
+    from ..bearing.cavitation import condition
     from ..bearing.film import end_flux, peak_of, rupture_of
     from ..bearing.fv import assemble
-    from ..bearing.lcp import solve_lcp
+
+    cond = condition(cavitation)
 
     nt, nz = mesh
     prob = assemble(xi, lam, nt, nz)
@@ -109,11 +117,12 @@ def _reynolds_unit(xi: float, lam: float, psi: np.ndarray, mesh=(96, 12)) -> np.
     out = np.empty((psi.size, 6))
     cav = None
     for k, ps in enumerate(psi):
-        P, cav, _ = solve_lcp(prob.M, math.sin(ps) * prob.bA + math.cos(ps) * prob.bB, None, cav)
+        s = cond.solve(prob, math.sin(ps), math.cos(ps), None, cav)
+        P, cav = s.P, s.state
         P2 = P.reshape(nt, nz)
         pm, tp = peak_of(prob.theta, P2[:, 0])
         side = end_flux(dth, H, P2[:, -1], P2[:, -2], z[-1] - z[-2], z[-1] - z[-3])
-        out[k] = (P @ wc, P @ ws, pm, tp, rupture_of(prob.theta, P2[:, 0], "reynolds"), side)
+        out[k] = (P @ wc, P @ ws, pm, tp, rupture_of(prob.theta, P2[:, 0], cavitation), side)
     return out
 
 
@@ -149,14 +158,16 @@ def build_table(
     (ξ, ψ): (f_r, f_t)·(1−ξ²)^{3/2} [T37] (read by :func:`finite_force`), then for
     :func:`finite_outputs` [T83]: (P̂_max, side flow)·(1−ξ²)^{3/2}, (cos, sin) of θ_pmax and
     (cos, sin) of the mid-plane rupture angle. ``cavitation``:
-    "gumbel" (FD full film clipped, n_theta × n_zeta cells [T36]) or "reynolds" (Swift–Stieber
-    LCP on the FV mesh 96 × 12 of the half bearing [T80]). Cached on disk under
+    "gumbel" (FD full film clipped, n_theta × n_zeta cells [T36]) or any other registered
+    condition of :mod:`jointdyn.bearing.cavitation`, e.g. "reynolds" (Swift–Stieber LCP), on the
+    FV mesh 96 × 12 of the half bearing [T80, T88]. Cached on disk under
     ~/.cache/jointdyn/finite_tables, keyed by all arguments and a hash of the builder's sources."""
     if not (math.isfinite(L_over_D) and L_over_D > 0):
         raise ValueError(f"L_over_D = {L_over_D!r} [-]: must be > 0")
-    if cavitation not in CAVITATION:
-        raise ValueError(f"cavitation = {cavitation!r}: must be one of {', '.join(CAVITATION)}")
-    args = (2, L_over_D, n_xi, n_psi, n_theta, n_zeta, XI_MAX, cavitation, _builder_hash())
+    from ..bearing.cavitation import check_cavitation
+
+    check_cavitation(cavitation)
+    args = (2, L_over_D, n_xi, n_psi, n_theta, n_zeta, XI_MAX, cavitation, _builder_hash(cavitation))
     key = hashlib.sha1(repr(args).encode()).hexdigest()[:16]
     base = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "jointdyn" / "finite_tables"
     f = base / f"{key}.npy"
@@ -175,7 +186,7 @@ def build_table(
             fr, ft = unit_forces(th, zeta, PA, PB, psi)
             o = _gumbel_outputs(float(xi), th, zeta, PA, PB, psi)
         else:
-            r = _reynolds_unit(float(xi), L_over_D, psi)
+            r = _fv_unit(float(xi), L_over_D, psi, cavitation)
             fr, ft, o = r[:, 0], r[:, 1], r[:, 2:]
         scale = (1 - xi * xi) ** 1.5
         rows = slice(2 + a * n_psi, 2 + (a + 1) * n_psi)

@@ -32,7 +32,7 @@ import numpy as np
 from numba import njit
 
 from ..layout import block_width, check_codes, params_of
-from .film_finite import CAVITATION, DEFAULT_CAVITATION, finite_force
+from .film_finite import DEFAULT_CAVITATION, finite_force
 
 OTT = 0
 ALSHAER2005 = 1
@@ -209,16 +209,19 @@ class Finite:
     cavitation condition (built once, cached on disk) [T36–T38, T70–T80]."""
 
     cavitation: str = DEFAULT_CAVITATION
-    """film rupture condition: ``gumbel`` (half-Sommerfeld: negative pressures clipped) or
-    ``reynolds`` (Swift–Stieber: p ≥ 0 and ∂p/∂θ = 0 at rupture, the classical design tables)"""
+    """film rupture condition, a name in :mod:`jointdyn.bearing.cavitation`'s registry: ``gumbel``
+    (half-Sommerfeld: negative pressures clipped), ``reynolds`` (Swift–Stieber: p ≥ 0 and
+    ∂p/∂θ = 0 at rupture, the classical design tables) or a registered plugin [T88]"""
     code: ClassVar[int] = FINITE
     kernel: ClassVar = finite_force
     tag: ClassVar[str] = "T36"
     PARAMS: ClassVar[tuple[str, ...]] = ()
 
     def __post_init__(self):
-        if self.cavitation not in CAVITATION:
-            raise ValueError(f"Finite.cavitation = {self.cavitation!r}: unknown; valid: {list(CAVITATION)}")
+        from ..bearing.cavitation import names
+
+        if self.cavitation not in names():
+            raise ValueError(f"Finite.cavitation = {self.cavitation!r}: unknown; valid: {list(names())}")
 
     def table(self, length: float, journal_radius: float) -> np.ndarray:
         """The force table of a bearing of this length and journal radius [m, m]."""
