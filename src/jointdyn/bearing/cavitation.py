@@ -61,10 +61,10 @@ class SwiftStieber:
     mass_conserving: ClassVar[bool] = False
 
     def solve(self, prob, A: float, B: float, fixed=None, warm=None) -> Solution:
-        from .lcp import residual, solve_lcp
+        from .lcp import residual, solve_lcp_banded
 
         b = A * prob.bA + B * prob.bB
-        P, cav, it = solve_lcp(prob.M, b, fixed, warm)
+        P, cav, it = solve_lcp_banded(prob, b, fixed, warm)
         return Solution(P, cav, it, residual(prob.M, b, P, fixed))
 
 

@@ -36,6 +36,9 @@ class FVProblem:
     M        symmetric M-matrix (N×N CSR), N = nt·nz, unknown k = i·nz + j [-]
     bA, bB   right-hand sides for A = 1 and B = 1 (N,) [-]
     area     control-volume areas in (θ, ζ) (N,) [-]
+    band     M in symmetric upper band storage in the zig-zag θ order (N, u+1), u = 2·nz:
+             band[q, d] = M[perm[q], perm[q+d]] (for :func:`~jointdyn.bearing.lcp.solve_lcp_banded`)
+    perm     unknown order of ``band``: position q holds unknown perm[q] (N,) [-]
     """
 
     xi: float
@@ -48,6 +51,8 @@ class FVProblem:
     bA: np.ndarray
     bB: np.ndarray
     area: np.ndarray
+    band: np.ndarray
+    perm: np.ndarray
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -130,4 +135,25 @@ def assemble(
     area = (ds * dth)[:, None] * cv[None, :]
     bA = -(2.0 * np.cos(th))[:, None] * area  # M P = −∫source
     bB = ((2.0 + xi * xi) * np.sin(th))[:, None] * area
-    return FVProblem(xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel())
+    band, perm = band_form(M, nt, nz)
+    return FVProblem(xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel(), band, perm)
+
+
+def band_form(M: csr_matrix, nt: int, nz: int) -> tuple[np.ndarray, np.ndarray]:
+    """M (unknown k = i·nz + j, periodic in i) in symmetric upper band storage after ordering θ
+    zig-zag, i = 0, nt−1, 1, nt−2, …: θ neighbours, including the periodic pair (0, nt−1), are
+    then at most 2 positions apart, so the half bandwidth is u = 2·nz instead of (nt−1)·nz
+    [T89]. Returns (band (N, u+1) with band[q, d] = M[perm[q], perm[q+d]], perm (N,))."""
+    zig = np.empty(nt, np.int64)
+    zig[0::2] = np.arange((nt + 1) // 2)
+    zig[1::2] = nt - 1 - np.arange(nt // 2)
+    perm = (zig[:, None] * nz + np.arange(nz)[None, :]).ravel()
+    inv = np.empty_like(perm)
+    inv[perm] = np.arange(perm.size)
+    C = M.tocoo()
+    qi, qj = inv[C.row], inv[C.col]
+    up = qi <= qj
+    u = 2 * nz
+    band = np.zeros((perm.size, u + 1))
+    band[qi[up], qj[up] - qi[up]] = C.data[up]
+    return band, perm

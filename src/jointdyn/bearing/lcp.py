@@ -98,3 +98,110 @@ def psor(
     if n < 0:
         raise RuntimeError(f"PSOR did not converge in {max_sweeps} sweeps")
     return P, n
+
+
+@njit(cache=True)
+def _masked_band_solve(band, zero, b, R, x):
+    """x = solution of M x = b with x = 0 on ``zero`` (rows/columns replaced by the identity),
+    M symmetric positive definite in upper band storage band[q, d] = M[q, q+d]: right-looking
+    banded Cholesky M = RᵀR in the work array R (rank-1 updates of contiguous rows), then two
+    triangular solves; O(N·u²) [T89]."""
+    n, w = band.shape
+    for j in range(n):
+        for d in range(w):
+            i = j + d
+            if i >= n or ((zero[j] or zero[i]) and d > 0):
+                R[j, d] = 0.0
+            elif zero[j]:
+                R[j, d] = 1.0
+            else:
+                R[j, d] = band[j, d]
+    for j in range(n):
+        r0 = np.sqrt(R[j, 0])
+        R[j, 0] = r0
+        m = min(w, n - j)
+        for d in range(1, m):
+            R[j, d] /= r0
+        for d1 in range(1, m):
+            f = R[j, d1]
+            if f != 0.0:
+                row = j + d1
+                for d2 in range(d1, m):
+                    R[row, d2 - d1] -= f * R[j, d2]
+    for j in range(n):  # Rᵀ y = b, column-oriented
+        x[j] = 0.0 if zero[j] else b[j]
+    for j in range(n):
+        x[j] /= R[j, 0]
+        xj = x[j]
+        for d in range(1, min(w, n - j)):
+            x[j + d] -= R[j, d] * xj
+    for j in range(n - 1, -1, -1):  # R x = y
+        s = x[j]
+        for d in range(1, min(w, n - j)):
+            s -= R[j, d] * x[j + d]
+        x[j] = s / R[j, 0]
+
+
+@njit(cache=True)
+def _band_matvec(band, x, y):
+    """y = M x for symmetric M in upper band storage."""
+    n, w = band.shape
+    for i in range(n):
+        y[i] = 0.0
+    for i in range(n):
+        y[i] += band[i, 0] * x[i]
+        for d in range(1, min(w, n - i)):
+            y[i] += band[i, d] * x[i + d]
+            y[i + d] += band[i, d] * x[i]
+
+
+@njit(cache=True)
+def _active_set_banded(band, b, fixed, cav, max_iter):
+    """The active-set iteration of :func:`solve_lcp` on the band form (permuted order); ``cav``
+    is the start set (updated in place). Returns (P, iterations), iterations = −1 if not
+    converged."""
+    n, w = band.shape
+    R = np.empty((n, w))
+    P = np.empty(n)
+    Mp = np.empty(n)
+    for it in range(1, max_iter + 1):
+        _masked_band_solve(band, cav, b, R, P)
+        _band_matvec(band, P, Mp)
+        same = True
+        for k in range(n):
+            new = fixed[k] or (not (Mp[k] - b[k] < 0.0) if cav[k] else P[k] < 0.0)
+            if new != cav[k]:
+                same = False
+                cav[k] = new
+        if same:
+            for k in range(n):
+                P[k] = max(P[k], 0.0)
+            return P, it
+    return P, -1
+
+
+def solve_lcp_banded(prob, b: np.ndarray, fixed=None, cavitated=None, max_iter: int = 100):
+    """:func:`solve_lcp` for an assembled problem (``prob`` from :func:`.fv.assemble`), compiled
+    on the band form of M (:func:`.fv.band_form`): the same primal–dual active-set iteration and
+    result (to rounding), 3–4× less CPU per iteration than a sparse LU of the reduced matrix
+    [T72, T89]. Returns (P ≥ 0, cavitated mask, iterations); RuntimeError on no convergence."""
+    n = b.size
+    perm = prob.perm
+    fx = np.zeros(n, np.bool_) if fixed is None else np.asarray(fixed, np.bool_)
+    fxp = fx[perm]
+    bp = np.ascontiguousarray(b[perm], dtype=float)
+    if cavitated is None:  # start: where the full film is negative
+        R = np.empty(prob.band.shape)
+        P0 = np.empty(n)
+        _masked_band_solve(prob.band, fxp.copy(), bp, R, P0)
+        cav = (P0 < 0.0) | fxp
+    else:
+        cav = np.asarray(cavitated, np.bool_)[perm] | fxp
+    Pp, it = _active_set_banded(prob.band, bp, fxp, cav, max_iter)
+    if it < 0:
+        raise RuntimeError(f"active-set LCP did not converge in {max_iter} iterations")
+    P = np.empty(n)
+    P[perm] = Pp
+    mask = np.empty(n, np.bool_)
+    mask[perm] = cav
+    return P, mask, it
