@@ -200,9 +200,10 @@ def test_finite_tends_to_short_as_length_vanishes():
 
 
 def test_finite_stiffness_tends_to_long_pi_film():
-    # stiffness: 4.0 % at L/D = 8, 0.45 % at 32 (measured). Damping does not converge (24 % at
-    # L/D = 32): squeeze films with Gümbel clipping of the finite full film are not the π-film,
-    # whose pressure is shifted to vanish at θ₁ and θ₁ + π ([T38])
+    # stiffness: 4.0 % at L/D = 8, 0.45 % at 32 (measured). Damping does not converge to the
+    # π-film's (24 % at L/D = 32): the clipped finite full film tends to the clipped long film,
+    # whose squeeze derivative of F_t is 2.5/(1 + 1.5ε²) times the π-film's ([T87];
+    # all eight coefficients: tests/test_coefficients_long.py)
     k8 = _max_rel_diff("finite", 8.0, "alshaer2005", 1.0, NAMES[:4])
     k32 = _max_rel_diff("finite", 32.0, "alshaer2005", 1.0, NAMES[:4])
     assert k32 < k8 / 3 and k32 < 0.005
