@@ -120,38 +120,56 @@ def butenschoen_table(path: str | Path) -> str:
     return "\n".join(lines)
 
 
-def plot_validation(published_path: str | Path, out_png: str | Path) -> None:
+def plot_validation(published_path: str | Path, out_png: str | Path, butenschoen_path=None) -> None:
     """Figure S(ε) and attitude(ε): computed curves (``finite`` Reynolds, long Reynolds) over
-    the published Raimondi–Boyd points, one colour per L/D; saved as PNG."""
+    the published Raimondi–Boyd points (o), one colour per L/D, and Butenschön's (+) for the same
+    L/D when ``butenschoen_path`` is given [T84]; a third panel shows each published S relative
+    to the computed one (the ±3 % band of issue 13 shaded); saved as PNG."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     pub = load_published(published_path)
-    eps = np.linspace(0.05, 0.97, 40)
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 4.2))
+    but = load_butenschoen(butenschoen_path) if butenschoen_path is not None else {}
+    eps = np.linspace(0.05, 0.99, 48)
+    fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15, 4.4))
     for k, ld in enumerate(sorted(pub, key=lambda x: -x if math.isfinite(x) else -1e9)):
         col = f"C{k}"
         lab = "L/D = ∞" if math.isinf(ld) else f"L/D = {ld:g}"
-        tab = (
-            bearing_table("long", "reynolds", 1.0, eps)
-            if math.isinf(ld)
-            else bearing_table("finite", "reynolds", ld, eps)
-        )
+        model, ld_arg = ("long", 1.0) if math.isinf(ld) else ("finite", ld)
+        tab = bearing_table(model, "reynolds", ld_arg, eps)
         a1.semilogy(tab["eps"], tab["sommerfeld"], color=col, label=lab + " (computed)")
         a1.semilogy(pub[ld]["eps"], pub[ld]["sommerfeld"], "o", mfc="none", color=col)
         a2.plot(tab["eps"], tab["attitude_deg"], color=col, label=lab)
         a2.plot(pub[ld]["eps"], pub[ld]["attitude_deg"], "o", mfc="none", color=col)
+        S_here = bearing_table(model, "reynolds", ld_arg, pub[ld]["eps"])["sommerfeld"]
+        a3.plot(
+            pub[ld]["eps"], 100 * (pub[ld]["sommerfeld"] / S_here - 1), "o-", mfc="none", color=col, lw=0.8
+        )
+        if ld in but:
+            b = but[ld]
+            S_b = 1.0 / (2.0 * math.pi * b["So"])
+            a1.semilogy(b["eps"], S_b, "+", ms=7, color=col)
+            a2.plot(b["eps"], b["beta_deg"], "+", ms=7, color=col)
+            S_here = bearing_table("finite", "reynolds", ld, b["eps"])["sommerfeld"]
+            a3.plot(b["eps"], 100 * (S_b / S_here - 1), "+--", ms=7, color=col, lw=0.8)
     a1.set(
         xlabel="eccentricity ratio ε [-]",
         ylabel="Sommerfeld number S [-]",
-        title="S(ε): lines computed, o Raimondi–Boyd 1958",
+        title="S(ε): lines computed, o Raimondi–Boyd 1958, + Butenschön 1976",
     )
     a2.set(xlabel="eccentricity ratio ε [-]", ylabel="attitude angle φ [deg]", title="attitude φ(ε)")
+    a3.axhspan(-3, 3, color="0.9", zorder=0)
+    a3.set(
+        xlabel="eccentricity ratio ε [-]",
+        ylabel="published S / computed S − 1 [%]",
+        title="o Raimondi–Boyd, + Butenschön (band ±3 %)",
+    )
     a1.legend(fontsize=8)
     a1.grid(True, which="both", alpha=0.3)
     a2.grid(True, alpha=0.3)
+    a3.grid(True, alpha=0.3)
     fig.tight_layout()
     fig.savefig(out_png, dpi=110)
     plt.close(fig)
