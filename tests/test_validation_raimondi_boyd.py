@@ -63,7 +63,7 @@ def test_1958_outlier_is_in_the_table(res):
     """At L/D = 1/4, ε = 0.97 Raimondi & Boyd's S = 0.0101 lies 3.10 % below Butenschön's
     S = 1/(2π·15.2697) = 0.010423 (3 printed digits: ±0.5 %). Ours: +0.01 % from Butenschön
     (bound 0.5 %: the grid error of his table, [T85]). The friction torque ∝ (R/c)f/S is
-    load-independent: ours and the 1958 one agree to 0.12 % (bound: the rounding of RB's two
+    load-independent: ours and the 1958 one agree to 0.11 % (bound: the rounding of RB's two
     3-digit numbers, 0.55 %), so the 3.1 % in the friction variable is the load, i.e. S."""
     ld, e = OUTLIER
     i = list(load_published(DATA)[ld]["eps"]).index(e)
@@ -128,7 +128,7 @@ def test_butenschoen_mean_errors(but):
 @pytest.mark.slow
 def test_1958_outlier_richardson():
     """Mesh sequence 144×16, 288×32, 576×64 at L/D = 1/4, ε = 0.97: observed order p of S
-    (measured 1.98) and the Richardson limit S∞ (measured 0.0104099): +3.07 % from RB's 0.0101,
+    (measured 1.98) and the Richardson limit S∞ (measured 0.0104098): +3.07 % from RB's 0.0101,
     −0.13 % from Butenschön's 0.010423. Bounds: p within 0.2 of the scheme's 2 [T71]; S∞ within
     Butenschön's grid error (0.5 %) of his value, and off RB's by more than their rounding
     (0.5 %) plus that grid error."""
