@@ -224,6 +224,36 @@ def _catmull_rom(p0, p1, p2, p3, w):
 
 
 @njit(cache=True)
+def _psi_row(table, row0, n_psi, b, comp, wb):
+    """Catmull–Rom in ψ along the table rows from ``row0`` (one ξ node), cell b, weight wb;
+    ψ indices wrap with period n_psi − 1 (the grid holds both −π and π)."""
+    m = n_psi - 1
+    return _catmull_rom(
+        table[row0 + (b - 1) % m, comp],
+        table[row0 + b % m, comp],
+        table[row0 + (b + 1) % m, comp],
+        table[row0 + (b + 2) % m, comp],
+        wb,
+    )
+
+
+@njit(cache=True)
+def _interp(table, base, comp, n_xi, n_psi, a, wa, b, wb):
+    """Bicubic value of column ``comp`` of the block from row ``base`` in cell (a, b) at weights
+    (wa, wb) [T37]: Catmull–Rom in ψ on four ξ rows (clamped), linear ghost values beyond the ξ
+    ends, then Catmull–Rom in ξ. Scalar temporaries only (no allocation in the RHS)."""
+    c0 = _psi_row(table, base + min(max(a - 1, 0), n_xi - 1) * n_psi, n_psi, b, comp, wb)
+    c1 = _psi_row(table, base + min(max(a, 0), n_xi - 1) * n_psi, n_psi, b, comp, wb)
+    c2 = _psi_row(table, base + min(max(a + 1, 0), n_xi - 1) * n_psi, n_psi, b, comp, wb)
+    c3 = _psi_row(table, base + min(max(a + 2, 0), n_xi - 1) * n_psi, n_psi, b, comp, wb)
+    if a == 0:  # linear ghost values beyond the ξ ends instead of repeating the edge
+        c0 = 2.0 * c1 - c2
+    if a + 2 >= n_xi - 1:
+        c3 = 2.0 * c2 - c1
+    return _catmull_rom(c0, c1, c2, c3, wa)
+
+
+@njit(cache=True)
 def finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Tabulated finite-length film force [T37]: F = (6μR⁴/c²)·ρ·f(ξ, ψ), bicubic (Catmull–Rom,
     C¹; periodic in ψ, end-clamped in u) in (u = −ln(1−ξ), ψ) on f·(1−ξ²)^{3/2}; for ξ > ξ_max
@@ -245,24 +275,10 @@ def finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     sp = (psi + math.pi) / (2.0 * math.pi) * (n_psi - 1)
     b = min(int(sp), n_psi - 2)
     wb = sp - b
-    out = np.zeros(2)
-    for comp in range(2):
-        col = np.zeros(4)
-        for i in range(4):
-            ai = min(max(a - 1 + i, 0), n_xi - 1)
-            v = np.zeros(4)
-            for j in range(4):
-                # ψ grid includes both −π and π (same value): period n_psi − 1
-                bj = (b - 1 + j) % (n_psi - 1)
-                v[j] = table[2 + ai * n_psi + bj, comp]
-            col[i] = _catmull_rom(v[0], v[1], v[2], v[3], wb)
-        if a == 0:  # linear ghost values beyond the ξ ends instead of repeating the edge
-            col[0] = 2.0 * col[1] - col[2]
-        if a + 2 >= n_xi - 1:
-            col[3] = 2.0 * col[2] - col[1]
-        out[comp] = _catmull_rom(col[0], col[1], col[2], col[3], wa)
+    f0 = _interp(table, 2, 0, n_xi, n_psi, a, wa, b, wb)
+    f1 = _interp(table, 2, 1, n_xi, n_psi, a, wa, b, wb)
     s = 6.0 * mu * R * R * R * R / (c * c) * rho / ((1.0 - xi) * (1.0 + xi)) ** 1.5
-    return out[0] * s, out[1] * s
+    return f0 * s, f1 * s
 
 
 @njit(cache=True)
@@ -280,18 +296,7 @@ def _bicubic(table, base, comp, xi, psi):
     sp = (psi + math.pi) / (2.0 * math.pi) * (n_psi - 1)
     b = min(int(sp), n_psi - 2)
     wb = sp - b
-    col = np.zeros(4)
-    v = np.zeros(4)
-    for i in range(4):
-        ai = min(max(a - 1 + i, 0), n_xi - 1)
-        for j in range(4):
-            v[j] = table[base + ai * n_psi + (b - 1 + j) % (n_psi - 1), comp]
-        col[i] = _catmull_rom(v[0], v[1], v[2], v[3], wb)
-    if a == 0:
-        col[0] = 2.0 * col[1] - col[2]
-    if a + 2 >= n_xi - 1:
-        col[3] = 2.0 * col[2] - col[1]
-    return _catmull_rom(col[0], col[1], col[2], col[3], wa)
+    return _interp(table, base, comp, n_xi, n_psi, a, wa, b, wb)
 
 
 @njit(cache=True)
