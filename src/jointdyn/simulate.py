@@ -54,8 +54,9 @@ def _message(system: System, status: int) -> str:
         name = system.element_names[status - FILM_BREAKDOWN]
         return (
             f"film breakdown in element {name!r}: the journal reached the bearing wall (ξ ≥ 1, "
-            f"h_min ≤ 0) and the bearing has no contact law; give it `contact=` (mixed "
-            f"film/contact regime), or raise viscosity/clearance"
+            f"or h_min below the gap the tolerances resolve [T115]) and the bearing has no "
+            f"contact law; give it `contact=` (mixed film/contact regime), or raise "
+            f"viscosity/clearance"
         )
     return _MESSAGES.get(status, f"status {status}")
 

@@ -18,9 +18,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..forces.elements import NOUT, eval_forces
-from ..forces.journal import JOURNAL
-from ..layout import TYPE
+from ..forces.elements import FILM_BREAKDOWN, NOUT, eval_forces
+from ..forces.journal import CONTACT, JOURNAL, NO_CONTACT, penetration
+from ..layout import BODY_I, BODY_J, TYPE
 
 FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.OUT_COLUMNS)
 
@@ -45,6 +45,32 @@ def force_resolution(t, y, mem, P, rtol, atol, dF):
         for k in range(nf):
             dF[k] += np.hypot(out1[k, FX] - out0[k, FX], out1[k, FY] - out0[k, FY])
         yp[j] = y[j]
+
+
+@njit(cache=True)
+def film_gap_unresolved(q, qd, P, rtol, atol):
+    """0, or FILM_BREAKDOWN + k for the first journal bearing without a contact law whose minimum
+    film thickness h_min = c − |e| [m] is not larger than the change of |e| a state error at the
+    tolerances can make, Σ_j |δ(q + s_j e_j) − δ(q)| with s_j = atol + rtol·|q_j| [T115]: the
+    integration then cannot tell the film from ξ ≥ 1 (breakdown). rtol = 0: no check."""
+    if rtol <= 0.0:
+        return 0
+    fint, freal = P.fint, P.freal
+    for k in range(fint.shape[0]):
+        if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] != NO_CONTACT:
+            continue
+        bi, bj = fint[k, BODY_I], fint[k, BODY_J]
+        d0, _ = penetration(q, qd, bi, bj, freal[k])
+        qp = q.copy()
+        spread = 0.0
+        for j in range(q.shape[0]):
+            qp[j] = q[j] + (atol + rtol * abs(q[j]))
+            d1, _ = penetration(qp, qd, bi, bj, freal[k])
+            spread += abs(d1 - d0)
+            qp[j] = q[j]
+        if -d0 <= spread:
+            return FILM_BREAKDOWN + k
+    return 0
 
 
 @njit(cache=True)

@@ -7,6 +7,7 @@ from numba import njit
 
 from ..dynamics import project
 from ..forces.elements import advance_memory
+from .accuracy import film_gap_unresolved
 
 # status codes of the compiled integrators (messages in jointdyn.simulate)
 OK = 0
@@ -55,14 +56,18 @@ def write_dense(t0, y0, f0, t1, y1, f1, mem, t_out, iout, Y, MEM):
 
 
 @njit(cache=True)
-def accept_hooks(t, y, mem, P, do_project):
-    """After an accepted step: project on the constraints, then update element memory."""
+def accept_hooks(t, y, mem, P, do_project, rtol=0.0, atol=0.0):
+    """After an accepted step: project on the constraints, then update element memory; with
+    the error test's (rtol, atol), also stop on a film gap the tolerances do not resolve [T115]."""
     if do_project and P.n_rows > 0:
         if project(t, y, P, 1e-12) < 0.0:
             return PROJECTION_FAILED
     n = y.shape[0] // 2
     # non-zero codes from the elements (≥ 10, e.g. FILM_BREAKDOWN + element) pass through
-    return advance_memory(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables)
+    st = advance_memory(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables)
+    if st != OK:
+        return st
+    return film_gap_unresolved(y[:n], y[n:], P, rtol, atol)
 
 
 @njit(cache=True)

@@ -270,7 +270,7 @@ def drive(method, P, t_out, rtol, atol, hmax, max_steps, do_project, budget, w):
         t = t_new
         stats[1] += 1
         ictl[AGE] += 1
-        st = accept_hooks(t, y, mem, P, do_project)
+        st = accept_hooks(t, y, mem, P, do_project, rtol, atol)
         if st != OK:
             status = st
             break

@@ -1,0 +1,166 @@
+"""Work–precision of the stiff solvers on the lubricated slider-crank, one run, one process.
+
+Usage: ``python -m benchmarks.work_precision [--quick] [--repeat N] [--clearances 0.5,0.05]``
+
+Per clearance (π-film pin, 4 crank revolutions, 2881 samples as in the README) and per solver
+— ``radau5``, ``rodas4``, ``ros34pw2`` with the exact system Jacobian, ``scipy-radau`` (compiled
+RHS, Python per step) — over a ladder of rtol (atol = rtol·1e-3, as ``benchmarks.end_to_end``):
+wall time of ``simulate()`` end to end (median of N warm runs), RHS evaluations (exact Jacobians
+count one each), accepted / rejected steps, Jacobians and the max crank-moment error
+|ΔM|/peak against a converged run (``rodas4``, exact Jacobian, rtol 1e-11, atol 1e-14; its
+agreement with ``radau5`` at rtol 1e-12 is printed as the reference's own error bar).
+
+Then, per clearance, the wall time each solver needs for a given accuracy (log–log interpolation
+between the two ladder points that bracket it) and the ratios between solvers at equal accuracy.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+import warnings
+
+import numpy as np
+
+from jointdyn import post
+from jointdyn.errors import SimulationError
+from jointdyn.models.slider_crank import SPEED, slider_crank
+from jointdyn.simulate import SimConfig, simulate
+
+REVS = 4
+N_OUT = REVS * 720 + 1
+T_END = REVS * 2 * math.pi / SPEED
+LADDER = {
+    "radau5": (1e-5, 1e-6, 1e-7, 1e-8, 1e-9),
+    "rodas4": (1e-6, 1e-7, 1e-8, 1e-9),
+    "ros34pw2": (1e-6, 1e-7, 1e-8, 1e-9),
+    "scipy-radau": (1e-5, 1e-6, 1e-7, 1e-8),
+}
+QUICK = {"radau5": (1e-6, 1e-7), "rodas4": (1e-7,), "ros34pw2": (1e-7,), "scipy-radau": (1e-7,)}
+TARGETS = (1e-3, 1e-4, 1e-5)  # accuracies |ΔM|/peak at which solvers are compared
+
+
+def _system(c_mm: float):
+    kw = {"joint": "alshaer2005"} | ({} if c_mm == 0.5 else {"clearance": c_mm * 1e-3})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return slider_crank(**kw).compile()
+
+
+def _config(solver: str, rtol: float, atol_ratio: float = 1e-3) -> SimConfig:
+    return SimConfig(
+        t_end=T_END, n_out=N_OUT, solver=solver, rtol=rtol, atol=rtol * atol_ratio, jacobian="exact"
+    )
+
+
+def _error(M, Mr) -> float:
+    return float(np.abs(M - Mr).max() / np.abs(Mr).max())
+
+
+def reference(system):
+    """(crank moment of the converged run, its difference to an independent one |ΔM|/peak)."""
+    ref = post.driving_moment(simulate(system, _config("rodas4", 1e-11, 1e-3)))
+    check = post.driving_moment(simulate(system, _config("radau5", 1e-12, 1e-3)))
+    return ref, _error(check, ref)
+
+
+def _run(system, cfg):
+    """(results, '' or 'unresolved'): a run the accuracy guard [T111] rejects still has its
+    full results (status FORCE_UNRESOLVED); it is timed and reported, marked."""
+    try:
+        return simulate(system, cfg), ""
+    except SimulationError as err:
+        if err.results is None or len(err.results.t) != N_OUT:
+            raise
+        return err.results, "unresolved"
+
+
+def row(system, Mr, solver, rtol, repeat):
+    cfg = _config(solver, rtol)
+    _run(system, cfg)  # JIT warm-up
+    times, res, note = [], None, ""
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        res, note = _run(system, cfg)
+        times.append(time.perf_counter() - t0)
+    return {
+        "solver": solver,
+        "rtol": rtol,
+        "wall_s": statistics.median(times),
+        "rhs": res.stats["rhs_evaluations"],
+        "accepted": res.stats["accepted_steps"],
+        "rejected": res.stats["rejected_steps"],
+        "jacobians": res.stats["jacobians"],
+        "error": _error(post.driving_moment(res), Mr),
+        "guard": note,
+    }
+
+
+def time_at(rows, target: float) -> float:
+    """Wall time [s] a solver needs for |ΔM|/peak = target: log–log interpolation between the
+    cheapest ladder point at or below the target and the next looser one; nan if no point reaches
+    it, and the cheapest such point's time if the loosest one already does."""
+    pts = sorted((r["rtol"], r["error"], r["wall_s"], r["guard"]) for r in rows)  # tight → loose
+    ok = [p for p in pts if p[1] <= target and not p[3]]
+    if not ok:
+        return math.nan
+    best = ok[-1]  # loosest rtol meeting the target
+    looser = [p for p in pts if p[0] > best[0] and not p[3]]
+    if not looser:
+        return best[2]
+    nxt = looser[0]
+    if nxt[1] <= best[1] or nxt[2] >= best[2]:
+        return best[2]
+    f = math.log(target / best[1]) / math.log(nxt[1] / best[1])
+    return math.exp(math.log(best[2]) + f * math.log(nxt[2] / best[2]))
+
+
+def _table(rows, cols):
+    out = ["| " + " | ".join(cols) + " |", "|" + "---|" * len(cols)]
+    for r in rows:
+        out.append(
+            "| " + " | ".join(f"{r[c]:.3g}" if isinstance(r[c], float) else str(r[c]) for c in cols) + " |"
+        )
+    return "\n".join(out)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.work_precision")
+    ap.add_argument("--clearances", default="0.5,0.05", help="radial clearances [mm]")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--quick", action="store_true", help="two radau5 points and one of each other")
+    ap.add_argument("--solvers", default=",".join(LADDER))
+    a = ap.parse_args(argv)
+    ladder = QUICK if a.quick else LADDER
+    result = {}
+    for c in (float(x) for x in a.clearances.split(",")):
+        system = _system(c)
+        Mr, ref_err = reference(system)
+        rows = []
+        for solver in a.solvers.split(","):
+            for rtol in ladder[solver]:
+                rows.append(row(system, Mr, solver, rtol, 1 if a.quick else a.repeat))
+                print(f"  done c={c} {solver} rtol={rtol:g}", file=sys.stderr)
+        print(f"\nc = {c:g} mm (reference rodas4 rtol 1e-11; radau5 rtol 1e-12 differs by {ref_err:.1e})")
+        print(_table(rows, ["solver", "rtol", "wall_s", "rhs", "accepted", "rejected", "jacobians", "error", "guard"]))
+        by = {s: [r for r in rows if r["solver"] == s] for s in dict.fromkeys(r["solver"] for r in rows)}
+        eq = []
+        for target in TARGETS:
+            t = {s: time_at(rs, target) for s, rs in by.items()}
+            e = {"error": target} | {f"{s}_s": v for s, v in t.items()}
+            if "radau5" in t:
+                for s in t:
+                    if s != "radau5":
+                        e[f"{s}/radau5"] = t[s] / t["radau5"]
+            eq.append(e)
+        print(f"\nwall time at equal accuracy, c = {c:g} mm (interpolated; nan: not reached on the ladder)")
+        print(_table(eq, list(eq[0])))
+        result[c] = {"rows": rows, "equal_accuracy": eq, "reference_error": ref_err}
+    return result
+
+
+if __name__ == "__main__":
+    main()
