@@ -24,9 +24,12 @@ import time
 import warnings
 
 import numpy as np
+from numba import njit
 
 from jointdyn import post
+from jointdyn.dynamics import rhs
 from jointdyn.errors import SimulationError
+from jointdyn.jacobian import system_jacobian
 from jointdyn.models.slider_crank import SPEED, slider_crank
 from jointdyn.simulate import SimConfig, simulate
 
@@ -58,6 +61,32 @@ def _config(solver: str, rtol: float, atol_ratio: float = 1e-3) -> SimConfig:
 
 def _error(M, Mr) -> float:
     return float(np.abs(M - Mr).max() / np.abs(Mr).max())
+
+
+@njit(cache=True)
+def _loop(P, y, mem, n, jac):
+    nn = y.shape[0]
+    f = np.empty(nn)
+    Jm = np.empty((nn, nn))
+    ft, w1, w2 = np.empty(nn), np.empty(nn), np.empty(nn)
+    rhs(0.0, y, mem, P, f)
+    for _ in range(n):
+        if jac:
+            system_jacobian(0.0, y, f, mem, P, Jm, ft, w1, w2)
+        else:
+            rhs(0.0, y, mem, P, f)
+    return f[0] + Jm[0, 0]
+
+
+def _costs(P, y, mem, n):
+    """(RHS evaluation, exact system Jacobian) wall time [s] at (y, mem), mean of n calls."""
+    out = []
+    for jac in (False, True):
+        _loop(P, y, mem, 10, jac)
+        t0 = time.perf_counter()
+        _loop(P, y, mem, n, jac)
+        out.append((time.perf_counter() - t0) / n)
+    return out[0], out[1]
 
 
 def reference(system):
@@ -139,13 +168,21 @@ def main(argv=None):
     for c in (float(x) for x in a.clearances.split(",")):
         system = _system(c)
         Mr, ref_err = reference(system)
+        mid = simulate(system, _config("radau5", 1e-8))  # a state inside the run (e ≠ 0)
+        k = len(mid.t) // 2
+        c_rhs, c_jac = _costs(system.packed(0.0), mid.y[k].copy(), mid.mem[k].copy(), 20_000)
         rows = []
         for solver in a.solvers.split(","):
             for rtol in ladder[solver]:
                 rows.append(row(system, Mr, solver, rtol, 1 if a.quick else a.repeat))
                 print(f"  done c={c} {solver} rtol={rtol:g}", file=sys.stderr)
-        print(f"\nc = {c:g} mm (reference rodas4 rtol 1e-11; radau5 rtol 1e-12 differs by {ref_err:.1e})")
-        print(_table(rows, ["solver", "rtol", "wall_s", "rhs", "accepted", "rejected", "jacobians", "error", "guard"]))
+        print(
+            f"\nc = {c:g} mm (reference rodas4 rtol 1e-11; radau5 rtol 1e-12 differs by {ref_err:.1e}); "
+            f"one RHS {c_rhs * 1e6:.2f} µs, one exact Jacobian {c_jac * 1e6:.2f} µs "
+            f"(= {c_jac / c_rhs:.1f} RHS, counted as 1 in `rhs`)"
+        )
+        cols = ["solver", "rtol", "wall_s", "rhs", "accepted", "rejected", "jacobians", "error", "guard"]
+        print(_table(rows, cols))
         by = {s: [r for r in rows if r["solver"] == s] for s in dict.fromkeys(r["solver"] for r in rows)}
         eq = []
         for target in TARGETS:
@@ -159,6 +196,7 @@ def main(argv=None):
         print(f"\nwall time at equal accuracy, c = {c:g} mm (interpolated; nan: not reached on the ladder)")
         print(_table(eq, list(eq[0])))
         result[c] = {"rows": rows, "equal_accuracy": eq, "reference_error": ref_err}
+        result[c] |= {"rhs_s": c_rhs, "jac_s": c_jac}
     return result
 
 

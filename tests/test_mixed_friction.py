@@ -3,7 +3,6 @@
 import numpy as np
 import pytest
 
-from jointdyn.errors import SimulationError
 from jointdyn.forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
 from jointdyn.forces.friction_laws import Ambrosio, Coulomb
 from jointdyn.forces.journal import ClearanceJoint
@@ -43,12 +42,22 @@ def test_lubricated_joint_runs_through_the_mixed_regime():
     assert step.max() < 10 * step[film[1:] & film[:-1]].max()
 
 
-def test_same_bearing_without_contact_law_stops_with_a_clear_error():
+def test_same_bearing_without_contact_law_rides_below_the_asperities():
+    """Without a contact law the smooth film carries the load alone, at a film thickness below
+    the 1 µm asperities of the mixed model above (which is why that model needs its contact law).
+    The thin film is resolved and converged: max ξ agrees between rtol 1e-7 and 1e-9 (measured
+    0.99664898 with rodas4 and radau5; h_min = 1.68e-7 m). (With forward-difference Jacobians
+    rodas4 used to exhaust 20,000 steps here and report breakdown: an artefact of the differenced
+    Jacobian near the wall, [T115].)"""
     sysm = sc.slider_crank("alshaer2005", clearance=C, viscosity=MU).compile()
-    with pytest.raises(SimulationError, match=r"piston_pin.*contact law"):
-        simulate(
-            sysm, SimConfig(t_end=0.012, n_out=121, solver="rodas4", rtol=1e-7, atol=1e-11, max_steps=20_000)
-        )
+    xi_max, h_min = [], []
+    for rtol in (1e-7, 1e-9):
+        res = simulate(sysm, SimConfig(t_end=0.012, n_out=121, rtol=rtol, atol=rtol * 1e-4, max_steps=20_000))
+        xi_max.append(res.eout[:, 0, 2].max())
+        h_min.append(res.eout[:, 0, 3].min())
+    # 1e-6: the change of ξ a state error at rtol 1e-7 can make near the wall (measured 2.5e-9)
+    assert abs(xi_max[0] - xi_max[1]) < 1e-6
+    assert 0.0 < h_min[1] < HA
 
 
 def spinning_impact(friction):

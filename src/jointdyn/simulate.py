@@ -125,8 +125,8 @@ class SimConfig:
     n_out: int = 1001
     """number of equally spaced output samples on [0, t_end] (≥ 2)"""
     solver: str = "auto"
-    """a name in ``jointdyn.integrators.SOLVERS``, or ``"auto"``: ``rodas4`` when the system has a
-    lubricated journal bearing (stiff film), else ``dopri5``"""
+    """a name in ``jointdyn.integrators.SOLVERS``, or ``"auto"``: ``radau5`` when the system has a
+    lubricated journal bearing (stiff film), else ``dopri5`` [T116]"""
     rtol: float = 1e-8
     """relative tolerance [-]"""
     atol: float = 1e-10
@@ -139,10 +139,10 @@ class SimConfig:
     """accepted + rejected steps before giving up"""
     baumgarte: float | None = None
     """Baumgarte rate a [1/s] [T10]; None = 0 for projecting solvers, 1000 for scipy ones"""
-    jacobian: str = "finite-differences"
-    """system Jacobian of the compiled stiff solvers (rodas4, ros34pw2, radau5):
-    ``finite-differences`` or ``exact`` (chain rule through the elements' exact Jacobians
-    [T98–T104]; elements without one are differenced, with a warning naming them)"""
+    jacobian: str = "exact"
+    """system Jacobian of the compiled stiff solvers (rodas4, ros34pw2, radau5): ``exact`` (chain
+    rule through the elements' exact Jacobians [T98–T104]; elements without one are differenced,
+    with a warning naming them) or ``finite-differences`` (forward differences, the reference)"""
 
     def __post_init__(self):
         if not (math.isfinite(self.t_end) and self.t_end > 0):
@@ -166,12 +166,13 @@ class SimConfig:
 
 
 def resolve_solver(system: System, name: str) -> str:
-    """``"auto"`` -> ``rodas4`` if a journal bearing carries a film (stiff), else ``dopri5``."""
+    """``"auto"`` -> ``radau5`` if a journal bearing carries a film (stiff), else ``dopri5``
+    (choice measured with ``python -m benchmarks.work_precision`` [T116])."""
     if name != "auto":
         return name
     from .forces.journal import JournalBearing
 
-    return "rodas4" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
+    return "radau5" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
 
 
 def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget):

@@ -4,7 +4,8 @@ stays of order 3 with an *approximate* Jacobian [T18]. Rang & Angermann, BIT 45 
 Hairer's form with W = I − γhJ:  W k_i = h f(t + c_i h, y + Σ a_ij k_j) + hJ Σ γ_ij k_j + h²d_i f_t,
 y₁ = y + Σ b_i k_i, error Σ (b_i − b̂_i) k_i. Because the order does not rely on J being exact,
 the forward-difference Jacobian is reused for up to ``REUSE`` accepted steps (recomputed at once
-after a rejection): ≈ 6 RHS evaluations per step instead of Rodas4's ≈ 25. Steps land on the
+after a rejection): ≈ 6 RHS evaluations per step instead of Rodas4's ≈ 25. With the exact
+Jacobian (the default) a fresh one is taken every step (``driver.REUSE_EXACT``, [T117]). Steps land on the
 output times (no dense output: interpolated states of a stiff film give wrong forces).
 """
 
