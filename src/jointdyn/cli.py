@@ -145,7 +145,7 @@ _JOINT_HELP = "piston-pin joint kind: " + ", ".join(options.joints())
 def _solver_help() -> str:
     from .integrators import SOLVERS
 
-    return "integrator: auto (rodas4 for a lubricated joint, else dopri5), " + ", ".join(SOLVERS)
+    return "integrator: auto (radau5 for a lubricated joint, else dopri5), " + ", ".join(SOLVERS)
 
 
 #: CLI spelling of the slider-crank builder arguments
