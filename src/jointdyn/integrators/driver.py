@@ -70,7 +70,7 @@ class Work(NamedTuple):
     Jm: np.ndarray  # ∂f/∂y
     W: np.ndarray  # iteration matrix (real, LU)
     piv: np.ndarray
-    W2: np.ndarray  # radau5: the complex iteration matrix as a real (2nn, 2nn) block (LU)
+    W2: np.ndarray  # radau5: the complex iteration matrix (nn, nn), complex128 (LU)
     piv2: np.ndarray
     ft: np.ndarray  # ∂f/∂t
     yt: np.ndarray
@@ -87,7 +87,7 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
     force evaluation, counted as one RHS evaluation) instead of forward differences."""
     nn = y0.shape[0]
     Y, MEM, iout = start_outputs(y0, mem0, t0, t_out)
-    n2 = 2 * nn if method == RADAU5 else 1
+    n2 = nn if method == RADAU5 else 1
     ctl = np.zeros(12)
     ctl[T] = t0
     ctl[H] = h0 if h0 > 0 else 1e-6 * max(1.0, abs(t_out[-1] - t0))
@@ -112,7 +112,7 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
         Jm=np.zeros((nn, nn)),
         W=np.zeros((nn, nn)),
         piv=np.zeros(nn, dtype=np.int64),
-        W2=np.zeros((n2, n2)),
+        W2=np.zeros((n2, n2), dtype=np.complex128),
         piv2=np.zeros(n2, dtype=np.int64),
         ft=np.zeros(nn),
         yt=np.zeros(nn),

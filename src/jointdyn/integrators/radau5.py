@@ -2,7 +2,7 @@
 
 Hairer & Wanner, *Solving ODEs II* (1996), §IV.8, and their code RADAU5: the collocation
 system is solved by simplified Newton in transformed variables (one real n×n and one complex
-n×n system per iteration, here the complex one as a real 2n×2n block), started from the
+n×n system per iteration), started from the
 collocation polynomial of the previous step; the Jacobian is kept while the Newton contraction
 θ stays ≤ 0.001 and the LU while h does not change; embedded error estimate (E1 solve of
 γ₀⁻¹-weighted stage combination, refined after a rejection); Gustafsson's predictive step-size
@@ -69,24 +69,18 @@ def tolerances(rtol, atol):
 
 @njit(cache=True)
 def _factor(h, w):
-    """Real E1 = (U1/h) I − J and complex E2 = ((α + iβ)/h) I − J as a real 2n×2n block."""
+    """Real E1 = (U1/h) I − J and complex E2 = ((α + iβ)/h) I − J (n×n complex: half the
+    flops of the equivalent real 2n×2n block, [T114])."""
     Jm, W, W2 = w.Jm, w.W, w.W2
     nn = Jm.shape[0]
     fac1 = U1 / h
-    alphn = ALPH / h
-    betan = BETA / h
+    shift = complex(ALPH / h, BETA / h)
     for i in range(nn):
         for j in range(nn):
             W[i, j] = -Jm[i, j]
             W2[i, j] = -Jm[i, j]
-            W2[nn + i, nn + j] = -Jm[i, j]
-            W2[i, nn + j] = 0.0
-            W2[nn + i, j] = 0.0
         W[i, i] += fac1
-        W2[i, i] += alphn
-        W2[nn + i, nn + i] += alphn
-        W2[i, nn + i] = -betan
-        W2[nn + i, i] = betan
+        W2[i, i] += shift
     return lu_factor(W, w.piv) and lu_factor(W2, w.piv2)
 
 
@@ -129,7 +123,7 @@ def attempt_radau5(t, h, P, w, rtol, atol):
             Z1[i] = Z2[i] = Z3[i] = F1[i] = F2[i] = F3[i] = 0.0
     yt, fw = w.yt, w.fw
     a1, a2, a3 = w.work, w.gk, w.ft  # scratch (ft is not used by radau5)
-    r2 = np.empty(2 * nn)
+    r2 = np.empty(nn, dtype=np.complex128)
     faccon = max(ctl[FACCON], UROUND) ** 0.8  # RADAU5: at the start of every Newton loop
     theta = THET  # RADAU5: a step that converges in one iteration keeps the Jacobian
     dynold = 1.0
@@ -159,13 +153,12 @@ def attempt_radau5(t, h, P, w, rtol, atol):
             g2 = TI21 * a1[i] + TI22 * a2[i] + TI23 * a3[i] - F2[i] * alphn + F3[i] * betan
             g3 = TI31 * a1[i] + TI32 * a2[i] + TI33 * a3[i] - F3[i] * alphn - F2[i] * betan
             Z1[i] = g1
-            r2[i] = g2
-            r2[nn + i] = g3
+            r2[i] = complex(g2, g3)
         lu_solve(w.W, w.piv, Z1)
         lu_solve(w.W2, w.piv2, r2)
         for i in range(nn):
-            Z2[i] = r2[i]
-            Z3[i] = r2[nn + i]
+            Z2[i] = r2[i].real
+            Z3[i] = r2[i].imag
             dyno += (Z1[i] / scal[i]) ** 2 + (Z2[i] / scal[i]) ** 2 + (Z3[i] / scal[i]) ** 2
         dyno = np.sqrt(dyno / (3 * nn))
         if not np.isfinite(dyno):
