@@ -3,6 +3,8 @@
 import sys
 from pathlib import Path
 
+import pytest
+
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from benchmarks.__main__ import main  # noqa: E402
@@ -12,3 +14,18 @@ def test_benchmark_quick_runs(capsys):
     rows = main(["--quick", "--cases", "perfect"])
     assert rows and rows[0]["rhs_evaluations"] > 0 and rows[0]["err_M/peak"] < 1e-6
     assert "| case | solver |" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_work_precision_quick_runs(capsys):
+    """benchmarks.work_precision on one clearance, two radau5 points and one of each other solver
+    (no timing assertions)."""
+    from benchmarks.work_precision import main as wp_main
+
+    res = wp_main(["--quick", "--clearances", "0.5", "--repeat", "1"])
+    rows = res[0.5]["rows"]
+    assert {r["solver"] for r in rows} == {"radau5", "rodas4", "ros34pw2", "scipy-radau"}
+    # radau5's error shrinks with rtol (measured 1.2e-4 at 1e-6, 1.2e-5 at 1e-7)
+    r6, r7 = (r["error"] for r in rows if r["solver"] == "radau5")
+    assert r7 < r6
+    assert "wall time at equal accuracy" in capsys.readouterr().out

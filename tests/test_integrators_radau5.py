@@ -60,7 +60,7 @@ def test_film_slider_crank_against_tight_reference():
     M, Mr = post.driving_moment(res), post.driving_moment(ref)
     err = np.abs(M - Mr).max() / np.abs(Mr).max()
     print(f"radau5 rtol 1e-8: max|ΔM|/peak = {err:.3g}, {res.stats}")
-    # measured 8.5e-7 with 1,578 RHS evaluations (exact Jacobian, rtol unmapped [T114]; with
+    # measured 8.4e-7 with 1,605 RHS evaluations (exact Jacobian, rtol unmapped [T114]; with
     # RADAU5's mapping 2.7e-5); 2× margin
     assert err < 2e-6
 
