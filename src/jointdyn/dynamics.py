@@ -234,7 +234,8 @@ def project(t, y, P, tol):
     n = y.shape[0] // 2
     q = y[:n]
     qd = y[n:]
-    res = project_positions(t, q, qd, P.minv, P.cint, P.creal, m, tol, 6)
+    # np.int64: a literal 6 would compile a second specialisation next to model assembly's int64
+    res = project_positions(t, q, qd, P.minv, P.cint, P.creal, m, tol, np.int64(6))
     if res < 0.0:
         return -1.0
     if not project_velocities(t, q, qd, P.minv, P.cint, P.creal, m):
@@ -304,9 +305,9 @@ def outputs(ts, ys, mems, P, do_project):
             if do_project:
                 it = 0
                 while res > tol and it < 6:  # Gauss–Newton, M-weighted minimal correction [T11]
-                    _schur_into(S[:m, :m], J[:m], minv, m, n)
+                    _schur_into(S, J[:m], minv, m, n)
                     x[:m] = Phi[:m]
-                    if not cholesky_solve(S[:m, :m], x[:m]):
+                    if not cholesky_solve(S, x[:m]):
                         ok = False
                         break
                     for c in range(n):
@@ -325,8 +326,8 @@ def outputs(ts, ys, mems, P, do_project):
                         for c in range(n):
                             s += J[r, c] * qd[c]
                         x[r] = s
-                    _schur_into(S[:m, :m], J[:m], minv, m, n)
-                    if cholesky_solve(S[:m, :m], x[:m]):
+                    _schur_into(S, J[:m], minv, m, n)
+                    if cholesky_solve(S, x[:m]):
                         for c in range(n):
                             s = 0.0
                             for r in range(m):

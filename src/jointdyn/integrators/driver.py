@@ -22,7 +22,7 @@ from numba import njit
 from ..dynamics import rhs
 from ..forces.elements import onset_fraction, step_limit
 from ..jacobian import system_jacobian
-from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, start_outputs, write_dense
+from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, write_dense
 from .dopri5 import attempt_dopri5
 from .radau5 import (
     HHFAC,
@@ -86,7 +86,14 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
     ``exact_jacobian``: the stiff methods use :func:`jointdyn.jacobian.system_jacobian` (one
     force evaluation, counted as one RHS evaluation) instead of forward differences."""
     nn = y0.shape[0]
-    Y, MEM, iout = start_outputs(y0, mem0, t0, t_out)
+    nout = t_out.shape[0]
+    Y = np.zeros((nout, nn))
+    MEM = np.zeros((nout,) + mem0.shape)
+    iout = 0
+    while iout < nout and t_out[iout] <= t0:  # samples at or before t0: the initial state
+        iout += 1
+    Y[:iout] = y0
+    MEM[:iout] = mem0
     n2 = nn if method == RADAU5 else 1
     ctl = np.zeros(12)
     ctl[T] = t0
@@ -124,30 +131,11 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
     )
 
 
-@njit(cache=True)
-def _attempt(method, t, h, P, w, rtol, atol):
-    """One trial step of ``method`` from (t, w.y) to w.y1; returns (result, error norm)."""
-    if method == DOPRI5:
-        return attempt_dopri5(t, h, P, w, rtol, atol)
-    if method == RODAS4:
-        return attempt_rodas4(t, h, P, w, rtol, atol)
-    if method == ROS34PW2:
-        return attempt_ros34pw2(t, h, P, w, rtol, atol)
-    return attempt_radau5(t, h, P, w, rtol, atol)
-
-
-@njit(cache=True)
-def _dense(method, t, y, t_new, t_out, iout, w):
-    """Write the outputs in (t, t_new] from the method's continuous extension (before the
-    accepted-step hooks); returns the next output index."""
-    if method == DOPRI5:
-        return write_dense(t, y, w.K[0], t_new, w.y1, w.K[6], w.mem, t_out, iout, w.Y, w.MEM)
-    if method == RODAS4:
-        return write_dense_rodas(t, y, t_new, w.y1, w.K, w.mem, t_out, iout, w.Y, w.MEM)
-    if method == RADAU5:
-        store_polynomial(t_new - t, w)
-        return write_dense_radau5(t, t_new, w.y1, w.K, w.mem, t_out, iout, w.Y, w.MEM)
-    return iout
+# The step loop is compiled once per (method, Jacobian) by :func:`_entry`: the method code and
+# the Jacobian flag are closure constants, so numba's dead-branch pruning removes the other
+# methods before typing and a dopri5 run never compiles the stiff methods or a Jacobian. The
+# constants are the closure's only cells (integers), so the on-disk cache key of every entry
+# point is the same in every process.
 
 
 @njit(cache=True)
@@ -161,7 +149,7 @@ def _reject_factor(method, en):
 
 
 @njit(cache=True)
-def start(method, P, do_project, w):
+def _start(method, P, do_project, w):
     """Accepted-step hooks and f(t0, y0) at the initial state; returns a status code."""
     t = w.ctl[T]
     st = accept_hooks(t, w.y, w.mem, P, do_project)
@@ -176,143 +164,195 @@ def start(method, P, do_project, w):
     return OK
 
 
-@njit(cache=True)
+def _entry(METHOD: int, EXACT: int):
+    """The compiled driver of one method (``EXACT``: 1 analytic Jacobian, 0 forward
+    differences)."""
+
+    @njit(cache=True)
+    def drive_method(P, t_out, rtol, atol, hmax, max_steps, do_project, budget, w):
+        """Start (once), then integrate towards t_out[-1] for at most ``budget`` step attempts
+        (``budget < 0``: start only). Returns OK, RUNNING or an error status."""
+        if w.ictl[STARTED] == 0:
+            st = _start(METHOD, P, do_project, w)
+            if st != OK:
+                return st
+        if budget < 0:
+            return OK
+        nn = w.y.shape[0]
+        n = nn // 2
+        nout = t_out.shape[0]
+        y, mem, stats, ctl, ictl = w.y, w.mem, w.stats, w.ctl, w.ictl
+        y1 = w.y1
+        t = ctl[T]
+        h = ctl[H]
+        h_prop = ctl[H_PROP]
+        iout = ictl[IOUT]
+        fail_status = ictl[FAIL]
+        t_end = t_out[-1]
+        hmin = 1e-14 * max(1.0, abs(t_end))
+        reuse = REUSE_EXACT[METHOD] if EXACT == 1 else REUSE[METHOD]
+        attempts = 0
+        status = OK
+        while t < t_end:
+            if attempts >= budget:
+                status = RUNNING
+                break
+            attempts += 1
+            if stats[1] + stats[2] >= max_steps:
+                status = MAX_STEPS
+                break
+            if METHOD != DOPRI5 and ictl[AGE] >= reuse:  # (dopri5: REUSE = 0, no Jacobian)
+                if EXACT == 1:
+                    bad = system_jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
+                    stats[0] += 1
+                else:
+                    bad = jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
+                    stats[0] += nn + 1
+                if bad != 0:
+                    status = RHS_FAILED
+                    break
+                stats[3] += 1
+                ictl[AGE] = 0
+                ctl[H_LU] = -1.0  # radau5: refactor with the new Jacobian
+            h = min(h, hmax, step_limit(y[:n], y[n:], mem, P.fint, P.freal))
+            h_prop = h
+            if METHOD == ROS34PW2:  # no dense output: land on the next output time
+                if iout < nout and t + h >= t_out[iout] - 1e-14 * abs(t_out[iout]):
+                    h = t_out[iout] - t
+            elif t + h >= t_end - 1e-14 * abs(t_end):
+                h = t_end - t
+            if h < hmin:
+                status = STEP_TOO_SMALL if fail_status == OK else fail_status
+                break
+            if METHOD == DOPRI5:
+                res, en = attempt_dopri5(t, h, P, w, rtol, atol)
+            elif METHOD == RODAS4:
+                res, en = attempt_rodas4(t, h, P, w, rtol, atol)
+            elif METHOD == ROS34PW2:
+                res, en = attempt_ros34pw2(t, h, P, w, rtol, atol)
+            else:
+                res, en = attempt_radau5(t, h, P, w, rtol, atol)
+            if res == ATTEMPT_SINGULAR:  # iteration matrix not invertible
+                stats[2] += 1
+                h *= 0.5
+                if METHOD == ROS34PW2:
+                    ictl[AGE] = reuse
+                continue
+            if res == ATTEMPT_DIVERGED:  # radau5: Newton failed; renew a Jacobian that is not fresh
+                stats[2] += 1
+                h *= ctl[HHFAC]
+                ictl[4] = 1  # radau5.REJECTED
+                if ictl[AGE] > 0:
+                    ictl[AGE] = reuse
+                continue
+            if res == ATTEMPT_BAD or not np.isfinite(en):
+                stats[2] += 1
+                fail_status = RHS_FAILED
+                h *= 0.25
+                if METHOD == ROS34PW2 or (METHOD == RADAU5 and ictl[AGE] > 0):
+                    ictl[AGE] = reuse
+                continue
+            if en > 1.0:
+                stats[2] += 1
+                if METHOD == RADAU5:
+                    h = radau5_rejected(h, en, w)
+                    if ictl[AGE] > 0:
+                        ictl[AGE] = reuse
+                    continue
+                h *= _reject_factor(METHOD, en)
+                if METHOD == ROS34PW2 and ictl[AGE] > 0:  # a stale Jacobian may be the cause
+                    ictl[AGE] = reuse
+                continue
+            frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal)
+            if frac < 1.0:
+                stats[2] += 1
+                h *= max(frac, 0.01)
+                continue
+            # accepted
+            fail_status = OK
+            t_new = t + h
+            # outputs in (t, t_new] from the continuous extension (before the accepted-step hooks)
+            if METHOD == DOPRI5:
+                iout = write_dense(t, y, w.K[0], t_new, y1, w.K[6], mem, t_out, iout, w.Y, w.MEM)
+            elif METHOD == RODAS4:
+                iout = write_dense_rodas(t, y, t_new, y1, w.K, mem, t_out, iout, w.Y, w.MEM)
+            elif METHOD == RADAU5:
+                store_polynomial(t_new - t, w)
+                iout = write_dense_radau5(t, t_new, y1, w.K, mem, t_out, iout, w.Y, w.MEM)
+            y[:] = y1
+            t = t_new
+            stats[1] += 1
+            ictl[AGE] += 1
+            st = accept_hooks(t, y, mem, P, do_project, rtol, atol)
+            if st != OK:
+                status = st
+                break
+            if METHOD == ROS34PW2:
+                while iout < nout and t_out[iout] <= t + 1e-14 * abs(t):
+                    w.Y[iout] = y
+                    w.MEM[iout] = mem
+                    iout += 1
+            if METHOD == DOPRI5 and not (do_project and P.n_rows > 0):
+                w.K[0, :] = w.K[6]  # first-same-as-last
+                w.f0[:] = w.K[6]
+            else:
+                if rhs(t, y, mem, P, w.f0) != 0:
+                    status = RHS_FAILED
+                    break
+                stats[0] += 1
+                if METHOD == DOPRI5:
+                    w.K[0, :] = w.f0
+            e_now = max(en, 1e-10)
+            if METHOD == DOPRI5:
+                h *= min(5.0, max(0.2, 0.9 * e_now**-0.2))
+            elif METHOD == RODAS4:
+                h *= min(6.0, max(0.2, 0.9 * e_now**-0.25))
+            elif METHOD == RADAU5:
+                h = radau5_accepted(h, hmax, en, w, reuse)
+            else:
+                # PI controller (Gustafsson; Hairer & Wanner II §IV.8): exponents 0.7/k, 0.4/k, k = 3
+                fac = 0.9 * e_now ** (-0.7 / 3.0) * ctl[E_PREV] ** (0.4 / 3.0)
+                ctl[E_PREV] = e_now
+                h = max(h, h_prop) * min(3.0, max(0.2, fac))
+        if status == OK and iout == nout:
+            w.Y[nout - 1] = y
+            w.MEM[nout - 1] = mem
+        ctl[T] = t
+        ctl[H] = h
+        ctl[H_PROP] = h_prop
+        ictl[IOUT] = iout
+        ictl[FAIL] = fail_status
+        return status
+
+    return drive_method
+
+
+# One entry point per (method, Jacobian); a run compiles (or loads) exactly one of them.
+_ENTRIES = {(mth, exact): _entry(mth, exact) for mth in (RODAS4, ROS34PW2, RADAU5) for exact in (0, 1)}
+_ENTRIES[DOPRI5, 0] = _entry(DOPRI5, 0)
+
+
+def _entry_of(method: int, w: Work):
+    return _ENTRIES[method, 0 if method == DOPRI5 else int(w.ictl[EXACT_JAC])]
+
+
+_NO_TIMES = np.zeros(1)
+
+
+def start(method, P, do_project, w):
+    """Accepted-step hooks and f(t0, y0) at the initial state; returns a status code."""
+    return _entry_of(method, w)(P, _NO_TIMES, 0.0, 0.0, 0.0, 0, bool(do_project), -1, w)
+
+
 def drive(method, P, t_out, rtol, atol, hmax, max_steps, do_project, budget, w):
     """Integrate towards t_out[-1] for at most ``budget`` step attempts.
 
     Returns OK (t_out[-1] reached), RUNNING (budget used up; call again to continue) or an
-    error status (common.py). Outputs go to w.Y/w.MEM up to index w.ictl[IOUT]."""
-    nn = w.y.shape[0]
-    n = nn // 2
-    nout = t_out.shape[0]
-    y, mem, stats, ctl, ictl = w.y, w.mem, w.stats, w.ctl, w.ictl
-    y1 = w.y1
-    t = ctl[T]
-    h = ctl[H]
-    h_prop = ctl[H_PROP]
-    iout = ictl[IOUT]
-    fail_status = ictl[FAIL]
-    t_end = t_out[-1]
-    hmin = 1e-14 * max(1.0, abs(t_end))
-    reuse = REUSE_EXACT[method] if ictl[EXACT_JAC] == 1 else REUSE[method]
-    attempts = 0
-    status = OK
-    while t < t_end:
-        if attempts >= budget:
-            status = RUNNING
-            break
-        attempts += 1
-        if stats[1] + stats[2] >= max_steps:
-            status = MAX_STEPS
-            break
-        if reuse > 0 and ictl[AGE] >= reuse:
-            if ictl[EXACT_JAC] == 1:
-                bad = system_jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
-                stats[0] += 1
-            else:
-                bad = jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
-                stats[0] += nn + 1
-            if bad != 0:
-                status = RHS_FAILED
-                break
-            stats[3] += 1
-            ictl[AGE] = 0
-            ctl[H_LU] = -1.0  # radau5: refactor with the new Jacobian
-        h = min(h, hmax, step_limit(y[:n], y[n:], mem, P.fint, P.freal))
-        h_prop = h
-        if method == ROS34PW2:  # no dense output: land on the next output time
-            if iout < nout and t + h >= t_out[iout] - 1e-14 * abs(t_out[iout]):
-                h = t_out[iout] - t
-        elif t + h >= t_end - 1e-14 * abs(t_end):
-            h = t_end - t
-        if h < hmin:
-            status = STEP_TOO_SMALL if fail_status == OK else fail_status
-            break
-        res, en = _attempt(method, t, h, P, w, rtol, atol)
-        if res == ATTEMPT_SINGULAR:  # iteration matrix not invertible
-            stats[2] += 1
-            h *= 0.5
-            if method == ROS34PW2:
-                ictl[AGE] = reuse
-            continue
-        if res == ATTEMPT_DIVERGED:  # radau5: Newton failed; renew a Jacobian that is not fresh
-            stats[2] += 1
-            h *= ctl[HHFAC]
-            ictl[4] = 1  # radau5.REJECTED
-            if ictl[AGE] > 0:
-                ictl[AGE] = reuse
-            continue
-        if res == ATTEMPT_BAD or not np.isfinite(en):
-            stats[2] += 1
-            fail_status = RHS_FAILED
-            h *= 0.25
-            if method == ROS34PW2 or (method == RADAU5 and ictl[AGE] > 0):
-                ictl[AGE] = reuse
-            continue
-        if en > 1.0:
-            stats[2] += 1
-            if method == RADAU5:
-                h = radau5_rejected(h, en, w)
-                if ictl[AGE] > 0:
-                    ictl[AGE] = reuse
-                continue
-            h *= _reject_factor(method, en)
-            if method == ROS34PW2 and ictl[AGE] > 0:  # a stale Jacobian may be the cause
-                ictl[AGE] = reuse
-            continue
-        frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal)
-        if frac < 1.0:
-            stats[2] += 1
-            h *= max(frac, 0.01)
-            continue
-        # accepted
-        fail_status = OK
-        t_new = t + h
-        iout = _dense(method, t, y, t_new, t_out, iout, w)
-        y[:] = y1
-        t = t_new
-        stats[1] += 1
-        ictl[AGE] += 1
-        st = accept_hooks(t, y, mem, P, do_project, rtol, atol)
-        if st != OK:
-            status = st
-            break
-        if method == ROS34PW2:
-            while iout < nout and t_out[iout] <= t + 1e-14 * abs(t):
-                w.Y[iout] = y
-                w.MEM[iout] = mem
-                iout += 1
-        if method == DOPRI5 and not (do_project and P.n_rows > 0):
-            w.K[0, :] = w.K[6]  # first-same-as-last
-            w.f0[:] = w.K[6]
-        else:
-            if rhs(t, y, mem, P, w.f0) != 0:
-                status = RHS_FAILED
-                break
-            stats[0] += 1
-            if method == DOPRI5:
-                w.K[0, :] = w.f0
-        e_now = max(en, 1e-10)
-        if method == DOPRI5:
-            h *= min(5.0, max(0.2, 0.9 * e_now**-0.2))
-        elif method == RODAS4:
-            h *= min(6.0, max(0.2, 0.9 * e_now**-0.25))
-        elif method == RADAU5:
-            h = radau5_accepted(h, hmax, en, w, reuse)
-        else:
-            # PI controller (Gustafsson; Hairer & Wanner II §IV.8): exponents 0.7/k, 0.4/k, k = 3
-            fac = 0.9 * e_now ** (-0.7 / 3.0) * ctl[E_PREV] ** (0.4 / 3.0)
-            ctl[E_PREV] = e_now
-            h = max(h, h_prop) * min(3.0, max(0.2, fac))
-    if status == OK and iout == nout:
-        w.Y[nout - 1] = y
-        w.MEM[nout - 1] = mem
-    ctl[T] = t
-    ctl[H] = h
-    ctl[H_PROP] = h_prop
-    ictl[IOUT] = iout
-    ictl[FAIL] = fail_status
-    return status
+    error status (common.py). Outputs go to w.Y/w.MEM up to index w.ictl[IOUT]. Starts the
+    integration first (:func:`start`) if that has not been done."""
+    return _entry_of(method, w)(
+        P, t_out, float(rtol), float(atol), float(hmax), int(max_steps), bool(do_project), int(budget), w
+    )
 
 
 def method_tolerances(method: int, rtol: float, atol: float) -> tuple[float, float]:
