@@ -50,7 +50,6 @@ from importlib.metadata import PackageNotFoundError as _PNF  # noqa: E402
 from importlib.metadata import version as _v  # noqa: E402
 
 from . import post  # noqa: E402
-from .config import load_model  # noqa: E402
 from .errors import ModelError, PhysicsWarning, SimulationError  # noqa: E402
 from .model import Model  # noqa: E402
 from .models.slider_crank import slider_crank  # noqa: E402
@@ -64,6 +63,15 @@ except _PNF:  # pragma: no cover - running from an uninstalled source tree
     __version__ = "unknown"
 
 load = Results.load
+
+
+def __getattr__(name: str):
+    # model files (pydantic, ~0.15 s to import) only when used: the CLI's shipped models skip it
+    if name == "load_model":
+        from .config import load_model
+
+        return load_model
+    raise AttributeError(f"module 'jointdyn' has no attribute {name!r}")
 
 __all__ = [
     "Model",
