@@ -10,6 +10,10 @@ reuse counter.
 All loop state lives in the arrays of :class:`Work` (``ctl``: floats, ``ictl``: integers), so
 :func:`drive` can return after ``budget`` step attempts and be called again to continue *bit for
 bit* as if it had never stopped (``simulate`` uses this to stay responsive to signals).
+
+The loop is compiled once per (method, Jacobian kind), with the method as a compile-time
+constant, so that a run compiles only the method it uses [T170]; :func:`start` and
+:func:`drive` pick the compiled entry point.
 """
 
 from __future__ import annotations
