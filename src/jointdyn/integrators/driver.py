@@ -152,22 +152,6 @@ def _reject_factor(method, en):
     return max(0.2, 0.8 * en ** (-1.0 / 3.0))
 
 
-@njit(cache=True)
-def _start(method, P, do_project, w):
-    """Accepted-step hooks and f(t0, y0) at the initial state; returns a status code."""
-    t = w.ctl[T]
-    st = accept_hooks(t, w.y, w.mem, P, do_project)
-    if st != OK:
-        return st
-    if rhs(t, w.y, w.mem, P, w.f0) != 0:
-        return RHS_FAILED
-    w.stats[0] += 1
-    if method == DOPRI5:
-        w.K[0, :] = w.f0
-    w.ictl[STARTED] = 1
-    return OK
-
-
 def _entry(METHOD: int, EXACT: int):
     """The compiled driver of one method (``EXACT``: 1 analytic Jacobian, 0 forward
     differences)."""
@@ -176,10 +160,19 @@ def _entry(METHOD: int, EXACT: int):
     def drive_method(P, t_out, rtol, atol, hmax, max_steps, do_project, budget, w):
         """Start (once), then integrate towards t_out[-1] for at most ``budget`` step attempts
         (``budget < 0``: start only). Returns OK, RUNNING or an error status."""
+        # start: hooks and f(t0, y0) at the initial state (written here, not as a compiled
+        # function of its own, which would link and optimise the right-hand side once more)
         if w.ictl[STARTED] == 0:
-            st = _start(METHOD, P, do_project, w)
+            t = w.ctl[T]
+            st = accept_hooks(t, w.y, w.mem, P, do_project)
             if st != OK:
                 return st
+            if rhs(t, w.y, w.mem, P, w.f0) != 0:
+                return RHS_FAILED
+            w.stats[0] += 1
+            if METHOD == DOPRI5:
+                w.K[0, :] = w.f0
+            w.ictl[STARTED] = 1
         if budget < 0:
             return OK
         nn = w.y.shape[0]
