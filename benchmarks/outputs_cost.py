@@ -7,6 +7,7 @@ python -m benchmarks.outputs_cost --joint alshaer2005 --solver ros34pw2
 from __future__ import annotations
 
 import argparse
+import math
 import time
 
 import numpy as np
@@ -28,12 +29,13 @@ def _rhs_loop(ts, ys, mems, P, out):
 
 
 def best(f, repeat):
-    """Smallest wall time of ``repeat`` calls [s] (the least disturbed by other processes)."""
+    """Smallest CPU time of ``repeat`` calls [s] (process time: time the process spends
+    descheduled on a shared machine is not counted)."""
     ts = []
     for _ in range(repeat):
-        t0 = time.perf_counter()
+        t0 = time.process_time()
         f()
-        ts.append(time.perf_counter() - t0)
+        ts.append(time.process_time() - t0)
     return min(ts)
 
 
@@ -55,15 +57,25 @@ def main(argv=None):
     out = np.empty(Y0.shape[1])
     _rhs_loop(ts, Y0, MEM, P, out)
     outputs(ts, Y0.copy(), MEM, P, True)
-    t_rhs = best(lambda: _rhs_loop(ts, Y0, MEM, P, out), a.repeat) / len(ts)
-    t_out = best(lambda: outputs(ts, Y0.copy(), MEM, P, True), a.repeat) / len(ts)
-    t_copy = best(lambda: Y0.copy(), a.repeat) / len(ts)
-    t_out -= t_copy
-    # the same without the projection of the samples (drift report and accelerations only)
     Yp = Y0.copy()
     outputs(ts, Yp, MEM, P, True)  # projected samples: a second projection does no iteration
-    t_noproj = best(lambda: outputs(ts, Y0.copy(), MEM, P, False), a.repeat) / len(ts) - t_copy
-    t_onman = best(lambda: outputs(ts, Yp.copy(), MEM, P, True), a.repeat) / len(ts) - t_copy
+    # interleaved rounds, smallest time of each kind: a change of machine load between blocks
+    # of repeats would otherwise bias the ratios (the machine is shared)
+    kinds = {
+        "rhs": lambda: _rhs_loop(ts, Y0, MEM, P, out),
+        "outputs": lambda: outputs(ts, Y0.copy(), MEM, P, True),
+        "noproj": lambda: outputs(ts, Y0.copy(), MEM, P, False),  # drift report + accelerations
+        "onman": lambda: outputs(ts, Yp.copy(), MEM, P, True),
+        "copy": lambda: Y0.copy(),
+    }
+    tmin = {k: math.inf for k in kinds}
+    for _ in range(a.repeat):
+        for k, f in kinds.items():
+            tmin[k] = min(tmin[k], best(f, 1))
+    t_rhs, t_copy = tmin["rhs"] / len(ts), tmin["copy"] / len(ts)
+    t_out = tmin["outputs"] / len(ts) - t_copy
+    t_noproj = tmin["noproj"] / len(ts) - t_copy
+    t_onman = tmin["onman"] / len(ts) - t_copy
     end_to_end = best(lambda: simulate(system, cfg), max(1, a.repeat // 4))
     print(
         f"{system.name}, solver {res.config['solver']}, {len(ts)} samples: "
