@@ -164,7 +164,7 @@ def _entry(METHOD: int, EXACT: int):
         # function of its own, which would link and optimise the right-hand side once more)
         if w.ictl[STARTED] == 0:
             t = w.ctl[T]
-            st = accept_hooks(t, w.y, w.mem, P, do_project)
+            st = accept_hooks(t, w.y, w.mem, P, do_project, 0.0, 0.0)  # = the defaults: no gap test
             if st != OK:
                 return st
             if rhs(t, w.y, w.mem, P, w.f0) != 0:
