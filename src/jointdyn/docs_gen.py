@@ -5,7 +5,8 @@ paper's cases and the beyond-the-paper cases) and the clearance × viscosity swe
 ``examples/sweep_clearance_viscosity.toml``, then rewrites
 
 * the blocks between ``<!-- generated:NAME -->`` and ``<!-- /generated -->`` of the README and
-  of ``docs/reproduction.md`` (``reproduce-table``, ``reproduce-claims``, ``sweep-claims``), and
+  of ``docs/reproduction.md`` (``reproduce-table``, ``dry-ensemble``, ``reproduce-claims``,
+  ``sweep-claims``), and
 * the figures in ``docs/figures/`` (``moment_overlay.png``, ``orbit_*.png``,
   ``film_thickness.png``, ``joint_force.png``, ``moment_beyond.png``, ``sweep_*.png``).
 
@@ -55,13 +56,19 @@ def _g(v: float, digits: int = 4) -> str:
 
 
 # -- computing --------------------------------------------------------------------------------
-def reproduce_runs(out: Path, figures: bool = True) -> dict:
-    """The runs of ``jointdyn reproduce alshaer2005`` (4 revolutions, all cases)."""
+def reproduce_runs(out: Path, figures: bool = True, workers: int | None = None) -> tuple[dict, dict]:
+    """The runs of ``jointdyn reproduce alshaer2005`` (4 revolutions, all cases) and its dry
+    ensemble (:mod:`jointdyn.reproduce_ensemble`)."""
+    import json
+
     from .reproduce import BEYOND_CASES, PAPER_CASES, reproduce_alshaer2005, run_case
+    from .reproduce_ensemble import dry_ensemble
 
     if figures:
-        return reproduce_alshaer2005(out, revs=REVS)
-    return {c.name: (*run_case(c, REVS), c) for c in PAPER_CASES + BEYOND_CASES}
+        runs = reproduce_alshaer2005(out, revs=REVS, ensemble=True)
+        return runs, json.loads((out / "ensemble_dry.json").read_text(encoding="utf-8"))
+    runs = {c.name: (*run_case(c, REVS), c) for c in PAPER_CASES + BEYOND_CASES}
+    return runs, dry_ensemble(workers=workers)
 
 
 def sweep_dataset(out: Path, workers: int | None = None):
@@ -77,7 +84,8 @@ def reproduce_table(runs: dict) -> str:
     lines = ["| case | " + " | ".join(TABLE_COLUMNS) + " |", "|---" * (len(TABLE_COLUMNS) + 1) + "|"]
     for _, _, s, case in runs.values():
         vals = [str(int(s[c])) if c == "impacts" else _g(float(s.get(c, math.nan))) for c in TABLE_COLUMNS]
-        lines.append(f"| {case.name} | " + " | ".join(vals) + " |")
+        name = f"{case.name} (one chaotic trajectory)" if case.joint == "dry" else case.name
+        lines.append(f"| {name} | " + " | ".join(vals) + " |")
     return "\n".join(lines)
 
 
@@ -105,9 +113,9 @@ def reproduce_claims(runs: dict) -> str:
         f"{d['peak_moment_all']:+.0f} / {d['min_moment_all']:+.0f} N·m over the run ({spike:.1f}× the "
         "perfect peak); RMS over the last revolution "
         f"{d['rms_moment']:.1f} N·m against {p['rms_moment']:.1f} N·m. The paper's \"two orders of "
-        'magnitude" is not reproduced with this contact stiffness. Later impacts are not converged (the '
-        "dry case is chaotic, [T162]): these are the numbers this code produces deterministically on "
-        "this machine class; RMS and first-impact penetration are the robust measures."
+        'magnitude" is not reproduced with this contact stiffness. These numbers are one trajectory of a '
+        "chaotic system ([T162]): they change with the tolerance after the first impacts. The "
+        "distribution over revolutions and replicas below is what is reproducible."
     )
     lub = (
         "- **Lubricated joints**: the π-film crank moment is of the same order as the perfect one "
@@ -215,9 +223,17 @@ def _butenschoen_table() -> str:
     return butenschoen_table(ROOT / "tests" / "data" / "butenschoen_1976.csv")
 
 
-def _blocks_now(runs, ds) -> dict[str, str]:
+def dry_ensemble_block(ens: dict) -> str:
+    """The dry case as a distribution: the reproduce ensemble's table and what it resolves."""
+    from .reproduce_ensemble import ensemble_markdown, ensemble_sentence
+
+    return ensemble_markdown(ens) + "\n\n" + ensemble_sentence(ens)
+
+
+def _blocks_now(runs, ds, ens) -> dict[str, str]:
     return {
         "reproduce-table": reproduce_table(runs),
+        "dry-ensemble": dry_ensemble_block(ens),
         "reproduce-claims": reproduce_claims(runs),
         "sweep-claims": sweep_claims(ds),
         "validation-table": validation_table(),
@@ -233,13 +249,13 @@ def generate(
     import shutil
 
     with tempfile.TemporaryDirectory() as tmp:
-        runs = reproduce_runs(Path(tmp) / "repro")
+        runs, ens = reproduce_runs(Path(tmp) / "repro")
         figures.mkdir(parents=True, exist_ok=True)
         for f in REPRO_FIGURES:
             shutil.copyfile(Path(tmp) / "repro" / f, figures / f)
         ds = sweep_dataset(Path(tmp) / "sweep", workers=workers)
         sweep_figures(ds, figures)
-    new = _blocks_now(runs, ds)
+    new = _blocks_now(runs, ds, ens)
     for doc in (readme, *pages):
         if doc.exists():
             doc.write_text(replace_blocks(doc.read_text(encoding="utf-8"), new), encoding="utf-8")
@@ -266,9 +282,9 @@ def check(readme: Path = README, workers: int | None = None, pages=PAGES) -> lis
     """Recompute the numbers (no figures) and list the numbers of the README and the docs pages
     that differ."""
     with tempfile.TemporaryDirectory() as tmp:
-        runs = reproduce_runs(Path(tmp), figures=False)
+        runs, ens = reproduce_runs(Path(tmp), figures=False, workers=workers)
         ds = sweep_dataset(Path(tmp) / "sweep", workers=workers)
-    new = _blocks_now(runs, ds)
+    new = _blocks_now(runs, ds, ens)
     old = blocks(readme.read_text(encoding="utf-8"))
     problems = [f"README has no generated block {k!r}" for k in new if k not in old and k not in PAGE_ONLY]
     for k in new:

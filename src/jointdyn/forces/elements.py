@@ -33,12 +33,22 @@ from .journal import NO_CONTACT as _NO_CONTACT
 from .springs import SPRING_DAMPER, SpringDamper, spring_damper
 from .tabulated import TABLE as TAB_TABLE
 from .tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
+from .torsion import (
+    HARMONIC_TORQUE,
+    TORSION_SPRING,
+    HarmonicTorque,
+    TorsionSpring,
+    harmonic_torque,
+    torsion_spring,
+)
 
 FORCE_ELEMENTS = {
     "spring_damper": SpringDamper,
     "clearance_joint": ClearanceJoint,
     "journal_bearing": JournalBearing,
     "tabulated_force": TabulatedForce,
+    "torsion_spring": TorsionSpring,
+    "harmonic_torque": HarmonicTorque,
 }
 NREAL = max(cls.REAL.width for cls in FORCE_ELEMENTS.values())
 NINT = max(cls.INT.width for cls in FORCE_ELEMENTS.values())
@@ -65,6 +75,10 @@ def eval_forces(t, q, qd, mem, fint, freal, tables, Q, out):
             tabulated_force(
                 t, q, qd, fint[k, BODY_J], fint[k], freal[k], tables[fint[k, TAB_TABLE]], Q, out[k]
             )
+        elif typ == TORSION_SPRING:
+            torsion_spring(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k])
+        elif typ == HARMONIC_TORQUE:
+            harmonic_torque(t, qd, fint[k, BODY_J], freal[k], Q, out[k])
 
 
 @njit(cache=True)
@@ -135,7 +149,7 @@ def element_tables(elements, body_index, point_of):
             fint[k], {"type": e.code, "body_i": body_index(e.body_i), "body_j": body_index(e.body_j), **ints}
         )
         pi = point_of(e.body_i, e.point_i) if e.point_i is not None else (0.0, 0.0)
-        pj = point_of(e.body_j, e.point_j)
+        pj = point_of(e.body_j, e.point_j) if e.point_j is not None else (0.0, 0.0)  # couples: no point
         points = {"xi_i": pi[0], "eta_i": pi[1], "xi_j": pj[0], "eta_j": pj[1]}
         cls.REAL.pack(freal[k], {**points, **reals}, blocks)
     rows = max(t.shape[0] for t in tabs)
