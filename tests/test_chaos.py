@@ -253,3 +253,24 @@ def test_slider_crank_exponent_signs(joint, sign):
         atol=rtol * 1e-3,
     )
     assert sign * r.exponent > 3 * r.stderr
+
+
+def test_sweep_array_output_is_the_runs_own_section(tmp_path):
+    # a sweep case with [output.poincare] returns the stroboscopic section of its run: the same
+    # numbers (bit for bit: same deterministic run) as sectioning a direct run [T136]
+    from jointdyn.chaos.bifurcation import section_arrays
+    from jointdyn.runs import run_slider_crank
+    from jointdyn.sweep import run_sweep
+    from jointdyn.sweep_spec import SweepSpec
+
+    base = {"joint": "dry", "rtol": 1e-7, "atol": 1e-10, "revs": 3, "samples_per_rev": 72}
+    poincare = {"transient_revs": 1, "record_revs": 2, "section_angle": 0.0}
+    spec = SweepSpec(base=base, grid={"clearance": [3e-4]}, arrays={"poincare": poincare})
+    ds = run_sweep(spec, tmp_path / "s", workers=1)
+    assert ds["poincare_ex_over_c"].dims == ("clearance", "rev") and list(ds["rev"].values) == [1, 2]
+    res, _, _ = run_slider_crank(
+        "dry", 3, model_kw={"clearance": 3e-4}, rtol=1e-7, atol=1e-10, samples_per_rev=72
+    )
+    direct = section_arrays(res, 1, 2, 0.0)
+    for k in ("ex_over_c", "eydot_over_cw", "impacts_per_rev"):
+        np.testing.assert_array_equal(ds[f"poincare_{k}"].values[0], direct[k])

@@ -57,9 +57,23 @@ def _metrics_of(summ: dict, element: str | None) -> dict:
     return {k: summ[k] if k in summ else es[k] for k in METRICS if k in summ or k in es}
 
 
-def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
+def case_arrays(res, arrays: dict) -> dict[str, list[float]]:
+    """Array outputs of one run (``[output.NAME]`` of the sweep file, ``ARRAY_OUTPUTS``):
+    ``poincare`` = the stroboscopic section of the first journal element [T122, T136]."""
+    out = {}
+    if "poincare" in arrays:
+        from .chaos.bifurcation import section_arrays
+
+        a = arrays["poincare"]
+        sec = section_arrays(res, int(a["transient_revs"]), int(a["record_revs"]), float(a["section_angle"]))
+        out |= {f"poincare_{k}": v for k, v in sec.items()}
+    return out
+
+
+def run_case(base: dict, params: dict, series_path: str | None = None, arrays: dict | None = None) -> dict:
     """Run one case (in a worker process) through :func:`jointdyn.runs.run`; returns its
-    metrics. Never raises: a failure is returned as ``{"error": message}``."""
+    metrics, plus ``"arrays"`` (:func:`case_arrays`) when ``arrays`` asks for them. Never
+    raises: a failure is returned as ``{"error": message}``."""
     from . import runs
     from .models import slider_crank as sc
 
@@ -87,6 +101,7 @@ def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
                 res, _, summ = runs.run_slider_crank(joint, revs, model_kw=model_kw, **run_kw)
                 element = sc.PIN if sc.PIN in res.system.element_names else None
         metrics = _metrics_of(summ, element)
+        extra = {"arrays": case_arrays(res, arrays)} if arrays else {}
         metrics["wall_time_s"] = time.perf_counter() - t0
         if series_path:
             with atomic.replacing(Path(series_path)) as tmp:
@@ -94,7 +109,7 @@ def run_case(base: dict, params: dict, series_path: str | None = None) -> dict:
         return {
             k: (float(v) if isinstance(v, (int, float, np.floating, np.integer)) else v)
             for k, v in metrics.items()
-        }
+        } | extra
     except Exception as err:  # recorded, the sweep goes on
         return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
 
@@ -135,7 +150,7 @@ def _connect(scheduler: str, timeout: float = 8.0):
 
 def _spec_record(spec: SweepSpec, n: int) -> dict:
     rec = {"base": spec.base, "grid": spec.grid, "zip": spec.zipped, "sample": spec.sample}
-    rec |= {"keep_series": spec.keep_series, "n_cases": n}
+    rec |= {"keep_series": spec.keep_series, "n_cases": n} | ({"arrays": spec.arrays} if spec.arrays else {})
     if "file" in spec.base:  # the model file is part of the spec: an edited file is another sweep
         rec["file_sha256"] = atomic.sha256(spec.base["file"])
     return json.loads(json.dumps(rec, default=str))
@@ -224,7 +239,10 @@ def _run(spec, od, cases, invalid, rec, client, workers, progress):
             if todo and client is not None:
                 from distributed import as_completed
 
-                futs = {client.submit(run_case, spec.base, cases[i], sp(i), pure=False): i for i in todo}
+                futs = {
+                    client.submit(run_case, spec.base, cases[i], sp(i), spec.arrays, pure=False): i
+                    for i in todo
+                }
                 for fut in as_completed(futs):
                     record(futs[fut], fut.result())
                     interrupts.check()
@@ -253,7 +271,7 @@ def _local(spec, cases, todo, sp, workers, record) -> None:
         max_workers=workers or os.cpu_count(), initializer=_worker_init, initargs=(os.getpid(),)
     )
     try:
-        pending = {ex.submit(run_case, spec.base, cases[i], sp(i)): i for i in todo}
+        pending = {ex.submit(run_case, spec.base, cases[i], sp(i), spec.arrays): i for i in todo}
         while pending:
             finished, _ = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
             for fut in finished:
@@ -282,6 +300,17 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
         {m: ("case", v) for m, v in data.items()} | {"error": ("case", errors.astype(str))},
         coords={"case": np.arange(len(cases))},
     )
+    for name, a in spec.arrays.items():  # (case, rev) variables, NaN where a case failed
+        keys = sorted({k for r in rows for k in r.get("arrays", {}) if k.startswith(f"{name}_")})
+        for k in keys:
+            v = np.full((len(rows), int(a["record_revs"])), np.nan)
+            for i, r in enumerate(rows):
+                x = np.asarray(r.get("arrays", {}).get(k, []), float)[: v.shape[1]]
+                v[i, : x.size] = x
+            ds[k] = (("case", "rev"), v)
+        ds.coords["rev"] = np.arange(
+            int(a["transient_revs"]), int(a["transient_revs"]) + int(a["record_revs"])
+        )
     for name in sorted({k for c in cases for k in c}):
         vals = [c.get(name, np.nan) for c in cases]
         numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in vals)

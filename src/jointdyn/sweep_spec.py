@@ -33,6 +33,9 @@ METRIC_UNITS = {
 }
 METRICS = tuple(METRIC_UNITS)
 TABLES = ("base", "grid", "zip", "sample", "output", "dask")
+#: array outputs a case can return besides its scalar metrics ([output.NAME] tables): name ->
+#: their keys and defaults (see :func:`jointdyn.sweep.case_arrays`)
+ARRAY_OUTPUTS = {"poincare": {"transient_revs": 0, "record_revs": 1, "section_angle": 0.0}}
 
 
 def model_args() -> tuple[str, ...]:
@@ -55,6 +58,8 @@ class SweepSpec:
     sample: dict = field(default_factory=dict)
     keep_series: bool = False
     scheduler: str | None = None
+    arrays: dict = field(default_factory=dict)
+    """array outputs per case: {name in ``ARRAY_OUTPUTS``: {key: value}}"""
 
     def cases(self) -> list[dict]:
         """The list of parameter dicts, one per case, in a fixed order."""
@@ -116,10 +121,17 @@ def load_sweep(path) -> SweepSpec:
         if t in doc and not isinstance(doc[t], dict):
             raise ValueError(f"{path}: {t} must be a table [{t}]")
     out = doc.get("output", {})
-    if set(out) - {"keep_series"}:
+    valid_out = {"keep_series", *ARRAY_OUTPUTS}
+    if set(out) - valid_out:
         raise ValueError(
-            f"{path}: [output] unknown key(s) {sorted(set(out) - {'keep_series'})}; valid: ['keep_series']"
+            f"{path}: [output] unknown key(s) {sorted(set(out) - valid_out)}; valid: {sorted(valid_out)}"
         )
+    arrays = {}
+    for name in set(out) & set(ARRAY_OUTPUTS):
+        t, keys = out[name], ARRAY_OUTPUTS[name]
+        if not isinstance(t, dict) or set(t) - set(keys):
+            raise ValueError(f"{path}: [output.{name}] takes only {sorted(keys)}")
+        arrays[name] = {**keys, **t}
     if not isinstance(out.get("keep_series", False), bool):
         raise ValueError(f"{path}: [output].keep_series must be true or false")
     dask = doc.get("dask", {})
@@ -144,6 +156,7 @@ def load_sweep(path) -> SweepSpec:
         sample=doc.get("sample", {}),
         keep_series=out.get("keep_series", False),
         scheduler=dask.get("scheduler"),
+        arrays=arrays,
     )
     for name in base:
         _check_param(base, name, "[base]")

@@ -20,8 +20,6 @@ points per parameter value, a quasi-periodic or chaotic one a cloud. A diagram f
 from __future__ import annotations
 
 import math
-import os
-import time
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -108,91 +106,68 @@ def load_bifurcation(path) -> BifurcationSpec:
     )
 
 
-def run_point(
-    base: dict,
-    parameter: str,
-    value: float,
-    transient_revs: int,
-    record_revs: int,
-    section_angle_deg: float,
-    samples_per_rev: int,
-) -> dict:
-    """One parameter value (in a worker process). Never raises: returns {"error": ...}."""
-    from ..models.slider_crank import SPEED, slider_crank
-    from ..options import builder_args, run_args
-    from ..runs import slider_crank_config
-    from ..simulate import simulate
+def section_arrays(res, transient_revs: int, record_revs: int, section_angle_deg: float) -> dict:
+    """Stroboscopic section of a slider-crank run's first journal element [T122]: the four
+    ``VARIABLES`` at crank angle ``section_angle_deg`` once per revolution for the
+    ``record_revs`` revolutions after ``transient_revs``, and ``impacts_per_rev`` (from the
+    element's onset counter) when it has contact memory. Lists of floats (JSON-ready)."""
     from .poincare import journal_section
 
-    t0 = time.perf_counter()
-    try:
-        merged = {**base, parameter: value}
-        model_kw = {k: merged[k] for k in builder_args() if k in merged}
-        run_kw = {k: merged[k] for k in run_args() if k in merged and k not in ("revs", "samples_per_rev")}
-        joint = merged.get("joint", "dry")
-        speed = float(model_kw.get("speed", SPEED))
-        revs = transient_revs + record_revs
-        cfg = slider_crank_config(joint, revs, samples_per_rev=samples_per_rev, speed=speed, **run_kw)
-        res = simulate(slider_crank(joint, **model_kw).compile(), cfg)
-        T = 2 * math.pi / abs(speed)
-        sec = journal_section(
-            res, section_angle=math.radians(section_angle_deg), transient=transient_revs * T
-        )
-        cnt = (
-            res.memory("piston_pin", "impacts") if "impacts" in type(res.system.elements[0]).MEMORY else None
-        )
-        out = {k: np.asarray(sec.values[k])[:record_revs].tolist() for k in VARIABLES}
-        if cnt is not None:
-            idx = np.arange(transient_revs, revs + 1) * samples_per_rev
-            out["impacts_per_rev"] = np.diff(cnt[idx]).tolist()
-        out["wall_time_s"] = time.perf_counter() - t0
-        return out
-    except Exception as err:  # recorded, the diagram goes on
-        return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
+    angle = res.coordinate("crank", "phi")
+    speed = float(np.median(np.diff(angle) / np.diff(res.t)))
+    T = 2 * math.pi / abs(speed)
+    sec = journal_section(res, section_angle=math.radians(section_angle_deg), transient=transient_revs * T)
+    out = {k: np.asarray(sec.values[k])[:record_revs].tolist() for k in VARIABLES}
+    el = res.system.element_names[0] if res.system.element_names else None
+    if el is not None and "impacts" in type(res.system.elements[0]).MEMORY:
+        from .poincare import stroboscopic_indices
+
+        b = stroboscopic_indices(angle, float(angle[0]))[transient_revs : transient_revs + record_revs + 1]
+        out["impacts_per_rev"] = np.diff(res.memory(el, "impacts")[b]).tolist()
+    return out
+
+
+def sweep_spec(spec: BifurcationSpec):
+    """The diagram as a sweep (:mod:`jointdyn.sweep`): one case per parameter value, each
+    returning its section as the array output ``poincare`` [T136]."""
+    from ..sweep_spec import SweepSpec
+
+    base = {
+        **spec.base,
+        "revs": spec.transient_revs + spec.record_revs,
+        "samples_per_rev": spec.samples_per_rev,
+    }
+    arrays = {
+        "poincare": {
+            "transient_revs": spec.transient_revs,
+            "record_revs": spec.record_revs,
+            "section_angle": spec.section_angle,
+        }
+    }
+    return SweepSpec(
+        base=base, grid={spec.parameter: list(spec.values)}, arrays=arrays, scheduler=spec.scheduler
+    )
 
 
 def run_bifurcation(
     spec: BifurcationSpec, out, workers: int | None = None, scheduler: str | None = None, progress=None
 ):
-    """Run all parameter values on local processes (or a Dask cluster) and write
+    """Run all parameter values through the sweep machinery (:func:`jointdyn.sweep.run_sweep`:
+    local processes or a Dask cluster; per-case files in ``out/sweep``, resumable) and write
     ``out/bifurcation.nc``; returns the xarray Dataset (dims: the parameter, ``rev``)."""
+    import json
+
+    from ..sweep import run_sweep
+
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
-    args = [
-        (
-            spec.base,
-            spec.parameter,
-            v,
-            spec.transient_revs,
-            spec.record_revs,
-            spec.section_angle,
-            spec.samples_per_rev,
-        )
-        for v in spec.values
-    ]
-    results: list[dict] = [{}] * len(args)
-    scheduler = scheduler or spec.scheduler
-    done = 0
-    if scheduler:
-        from distributed import Client, as_completed
-
-        with Client(scheduler) as client:
-            futs = {client.submit(run_point, *a, pure=False): i for i, a in enumerate(args)}
-            for fut in as_completed(futs):
-                results[futs[fut]] = fut.result()
-                done += 1
-                if progress:
-                    progress(done, len(args))
-    else:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
-
-        with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as ex:
-            futs = {ex.submit(run_point, *a): i for i, a in enumerate(args)}
-            for fut in as_completed(futs):
-                results[futs[fut]] = fut.result()
-                done += 1
-                if progress:
-                    progress(done, len(args))
+    sp = sweep_spec(spec)
+    run_sweep(sp, out / "sweep", scheduler=scheduler, workers=workers, progress=progress)
+    results = []
+    for i in range(len(spec.values)):
+        r = json.loads((out / "sweep" / "cases" / f"case_{i:05d}.json").read_text(encoding="utf-8"))
+        a = {k.removeprefix("poincare_"): v for k, v in r.get("arrays", {}).items()}
+        results.append(a | {k: r[k] for k in ("error", "wall_time_s") if k in r})
     ds = to_dataset(spec, results)
     ds.to_netcdf(out / "bifurcation.nc", engine="h5netcdf")
     return ds
