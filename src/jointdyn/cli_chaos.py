@@ -73,8 +73,10 @@ def bifurcation(
     workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
     scheduler: str = typer.Option(None, help="Dask scheduler tcp://HOST:PORT (default: local processes)"),
     variable: str = typer.Option("ex_over_c", help="section variable drawn against the parameter"),
+    resume: bool = typer.Option(False, help="keep the finished values of the same diagram in --out/sweep"),
 ):
-    """Bifurcation diagram over one parameter: writes bifurcation.nc and bifurcation.png."""
+    """Bifurcation diagram over one parameter, run as a sweep (DIR/sweep: one case file per
+    value): writes bifurcation.nc and bifurcation.png."""
     from .chaos.bifurcation import VARIABLES, load_bifurcation, plot_bifurcation, run_bifurcation
     from .cli import _progress
 
@@ -90,6 +92,7 @@ def bifurcation(
                 workers=workers,
                 scheduler=scheduler,
                 progress=lambda d, n: prog.update(task, completed=d),
+                resume=resume,
             )
     except ValueError as err:
         _fail(err)

@@ -14,13 +14,14 @@ from __future__ import annotations
 import json
 import math
 
-#: the reproduce ensemble: 2 tolerances × 4 replicas × (3 transient + 20 recorded) revolutions
-#: = 160 recorded revolutions (sized for ≈ +30 s on 2 cores; see ``docs/user-guide/chaos.md``)
+#: the reproduce ensemble: 2 tolerances × 4 replicas × (5 transient + 45 recorded) revolutions
+#: = 360 recorded revolutions (sized for ≈ +25 s on 2 cores: 160 revolutions took 10.6 s in the
+#: job; see ``docs/user-guide/chaos.md``)
 ENSEMBLE = {
     "rtols": (1e-7, 1e-8),
     "replicas": 4,
-    "revs": 23,
-    "transient_revs": 3,
+    "revs": 50,
+    "transient_revs": 5,
     "samples_per_rev": 720,
 }
 #: quantities reported (``revolution_stats`` names) with their label and display scale
@@ -45,7 +46,7 @@ def dry_ensemble(workers: int | None = None, **overrides) -> dict:
 def _g(v: float, digits: int = 4) -> str:
     if isinstance(v, float) and math.isnan(v):
         return "–"
-    return f"{v:#.{digits}g}".rstrip(".")
+    return f"{v:.{digits}g}"
 
 
 def ensemble_rows(result: dict) -> list[dict]:

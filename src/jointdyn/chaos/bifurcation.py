@@ -150,10 +150,16 @@ def sweep_spec(spec: BifurcationSpec):
 
 
 def run_bifurcation(
-    spec: BifurcationSpec, out, workers: int | None = None, scheduler: str | None = None, progress=None
+    spec: BifurcationSpec,
+    out,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress=None,
+    resume: bool = False,
 ):
     """Run all parameter values through the sweep machinery (:func:`jointdyn.sweep.run_sweep`:
-    local processes or a Dask cluster; per-case files in ``out/sweep``, resumable) and write
+    local processes or a Dask cluster; per-case files in ``out/sweep``; ``resume`` runs only the
+    values not finished by an earlier call with the same spec) and write
     ``out/bifurcation.nc``; returns the xarray Dataset (dims: the parameter, ``rev``)."""
     import json
 
@@ -162,7 +168,7 @@ def run_bifurcation(
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     sp = sweep_spec(spec)
-    run_sweep(sp, out / "sweep", scheduler=scheduler, workers=workers, progress=progress)
+    run_sweep(sp, out / "sweep", resume=resume, scheduler=scheduler, workers=workers, progress=progress)
     results = []
     for i in range(len(spec.values)):
         r = json.loads((out / "sweep" / "cases" / f"case_{i:05d}.json").read_text(encoding="utf-8"))
