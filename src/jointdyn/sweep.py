@@ -13,6 +13,10 @@ A sweep file (TOML)::
     [sample]                    # Latin-hypercube samples (optional): n, seed, ranges = {name = [lo, hi]}
     [output]
     keep_series = false         # also keep each case's time series (netCDF per case)
+    [output.poincare]           # optional array output: each case's stroboscopic section
+    transient_revs = 60         # (see case_arrays; gathered as (case, rev) variables)
+    record_revs = 40
+    section_angle = 0.0         # [deg]
     [dask]
     scheduler = "tcp://127.0.0.1:8786"   # optional; same as --scheduler
 
