@@ -274,3 +274,27 @@ def test_sweep_array_output_is_the_runs_own_section(tmp_path):
     direct = section_arrays(res, 1, 2, 0.0)
     for k in ("ex_over_c", "eydot_over_cw", "impacts_per_rev"):
         np.testing.assert_array_equal(ds[f"poincare_{k}"].values[0], direct[k])
+
+
+def test_reproduce_ensemble_quotes_the_per_revolution_statistics_of_its_runs():
+    # the README/report numbers of the dry case are medians and 5–95 % quantiles of the pooled
+    # per-revolution samples [T120, T135]: recomputed here from direct runs of the same cases
+    # (replica 0 unperturbed, replica 1 perturbed with seed 1) — equal to round-off
+    from jointdyn.chaos.ensemble import _run_case
+    from jointdyn.reproduce_ensemble import dry_ensemble, ensemble_markdown, ensemble_rows
+
+    kw = {"rtols": (1e-7,), "replicas": 2, "revs": 4, "transient_revs": 1, "samples_per_rev": 720}
+    ens = dry_ensemble(workers=1, **kw)
+    pooled = {}
+    for seed in (0, 1):
+        for k, v in _run_case("dry", {}, 4, 1, 1e-7, seed, 720).items():
+            pooled.setdefault(k, []).extend(v)
+    rows = {r["quantity"]: r for r in ensemble_rows(ens)}
+    for k, scale in (("peak_moment", 1.0), ("rms_moment", 1.0), ("impacts", 1.0), ("max_penetration", 1e6)):
+        x = np.asarray(pooled[k]) * scale
+        assert rows[k]["n"] == 6
+        assert rows[k]["median"] == pytest.approx(np.median(x), rel=1e-12)
+        assert rows[k]["p5"] == pytest.approx(np.quantile(x, 0.05), rel=1e-12)
+        assert rows[k]["p95"] == pytest.approx(np.quantile(x, 0.95), rel=1e-12)
+    table = ensemble_markdown(ens)
+    assert "peak crank moment [N·m]" in table and "rtol 1e-07" in table

@@ -175,7 +175,7 @@ def discussion(runs: dict) -> list[str]:
             f"{s['dry']['peak_moment_all']:.0f} N·m = {r:.1f}× the perfect peak. The paper says "
             f'"two orders of magnitude"; peaks of impacts do not converge with tolerance '
             f"(the dry case is chaotic, [T162]): this row is one trajectory; the distribution over "
-            f"revolutions and replicas is in the section 'Dry joint as a distribution' (when run). "
+            f"revolutions and replicas is in the section 'Dry joint as a distribution' (full runs). "
             f"RMS of this trajectory: {s['dry']['rms_moment']:.1f} vs {s['perfect']['rms_moment']:.1f} N·m."
         )
     for n in ("ott", "alshaer2005"):
