@@ -115,7 +115,7 @@ def reproduce_claims(runs: dict) -> str:
         f"{d['rms_moment']:.1f} N·m against {p['rms_moment']:.1f} N·m. The paper's \"two orders of "
         'magnitude" is not reproduced with this contact stiffness. These numbers are one trajectory of a '
         "chaotic system ([T162]): they change with the tolerance after the first impacts. The "
-        "distribution over revolutions and replicas below is what is reproducible."
+        "distribution over revolutions and replicas above is what is reproducible."
     )
     lub = (
         "- **Lubricated joints**: the π-film crank moment is of the same order as the perfect one "
