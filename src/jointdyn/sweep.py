@@ -312,6 +312,7 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
                 x = np.asarray(r.get("arrays", {}).get(k, []), float)[: v.shape[1]]
                 v[i, : x.size] = x
             ds[k] = (("case", "rev"), v)
+            ds[k].attrs["units"] = "1/rev" if k.endswith("impacts_per_rev") else "-"  # e/c, ė/(cω)
         ds.coords["rev"] = np.arange(
             int(a["transient_revs"]), int(a["transient_revs"]) + int(a["record_revs"])
         )
