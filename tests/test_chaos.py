@@ -298,3 +298,26 @@ def test_reproduce_ensemble_quotes_the_per_revolution_statistics_of_its_runs():
         assert rows[k]["p95"] == pytest.approx(np.quantile(x, 0.95), rel=1e-12)
     table = ensemble_markdown(ens)
     assert "peak crank moment [N·m]" in table and "rtol 1e-07" in table
+
+
+def test_bifurcation_on_a_dask_cluster_equals_the_local_run(tmp_path):
+    # the diagram is a sweep [T136]: on a Dask LocalCluster it gives the same section points,
+    # bit for bit (same compiled code, same inputs), as on local processes
+    distributed = pytest.importorskip("distributed", reason="the [dist] extra is needed for Dask")
+    from jointdyn.chaos.bifurcation import BifurcationSpec, run_bifurcation
+
+    spec = BifurcationSpec(
+        base={"joint": "dry", "rtol": 1e-7, "atol": 1e-10},
+        parameter="clearance",
+        values=(2e-4, 4e-4),
+        transient_revs=1,
+        record_revs=2,
+    )
+    local = run_bifurcation(spec, tmp_path / "local", workers=1)
+    with distributed.LocalCluster(
+        n_workers=1, threads_per_worker=1, host="127.0.0.1", dashboard_address=None, processes=True
+    ) as cluster:
+        dask = run_bifurcation(spec, tmp_path / "dask", scheduler=cluster.scheduler_address)
+    for k in ("ex_over_c", "eydot_over_cw", "impacts_per_rev"):
+        np.testing.assert_array_equal(local[k].values, dask[k].values)
+    assert local["ex_over_c"].shape == (2, 2) and np.isfinite(local["ex_over_c"]).all()
