@@ -7,7 +7,7 @@ README is out of date. Tolerance: one unit in the last printed digit (3–4 sign
 the runs are deterministic on one machine class, so anything beyond that is a real change.
 The dry case is chaotic (docs/theory.md [T162]): its row pins what this code produces on this
 machine class (a CPU that rounds differently may need a regeneration); the ``dry-ensemble`` block
-(the reproduce ensemble of the dry case, ≈ 25 s on 2 cores) pins its distribution, which is
+(the reproduce ensemble of the dry case, ≈ 30 s on 2 loaded cores) pins its distribution, which is
 deterministic given the code too (fixed seeds, fixed tolerances).
 """
 
