@@ -148,8 +148,8 @@ def test_ueda_model_file_reproduces_the_published_exponent():
     # Sprott (Chaos and Time-Series Analysis, 2003, p. 429): λ₁ = 0.0999 1/s for the Ueda
     # oscillator. Through the model file (rotor + torsion_spring + harmonic_torque) and the
     # mechanism path of the Benettin core, 1500 forcing periods after 100: measured
-    # 0.1009 ± 0.0041 1/s over 1000 periods (`jointdyn lyapunov examples/ueda.toml --tau 6.283185307179586
-    # --segments 1000 --transient 628.3185307179586 --time-scale 1 --rtol 1e-10 --atol 1e-12`).
+    # 0.0998 ± 0.0042 1/s (`jointdyn lyapunov examples/ueda.toml --tau 6.283185307179586
+    # --segments 1500 --transient 628.3185307179586 --time-scale 1 --rtol 1e-10 --atol 1e-12`).
     # Bound: 3 standard errors of our batch means (plus Sprott's last digit, 5e-5)
     from jointdyn.chaos.lyapunov import system_lyapunov
 
