@@ -353,6 +353,8 @@ def reproduce(
                 progress=lambda name, f: prog.update(tasks[name], completed=f),
             )
     console.print(escape(summary_markdown(runs)))
+    if (Path(out) / "ensemble_dry.md").exists():  # the dry case as a distribution (full runs)
+        console.print(escape((Path(out) / "ensemble_dry.md").read_text(encoding="utf-8")))
     console.print(f"wrote {escape(str(out))}/report.html, summary.csv, <case>.csv and the figures")
 
 
