@@ -15,8 +15,8 @@ import json
 import math
 
 #: the reproduce ensemble: 2 tolerances × 4 replicas × (5 transient + 45 recorded) revolutions
-#: = 360 recorded revolutions: 31 s wall inside the job on 2 cores at load average ≈ 6–7, +16–17 s
-#: CPU for the whole job (see ``docs/user-guide/chaos.md``)
+#: = 360 recorded revolutions: 7 s wall inside the job on 2 idle cores (job 57.6 → 66.2 s from
+#: empty caches), 31 s at load average ≈ 6–7; +16 s CPU (see ``docs/user-guide/chaos.md``)
 ENSEMBLE = {
     "rtols": (1e-7, 1e-8),
     "replicas": 4,
