@@ -12,7 +12,7 @@ per revolution = 2881 samples, the library defaults unless a solver is named):
 * ``error`` — max |ΔM|/peak of the crank moment against a converged run of the same model
   (rtol 1e-11, same sampling);
 * ``cli warm`` / ``cli cold`` — ``jointdyn run slider-crank --joint J --revs 4`` in a fresh
-  process (warm: JIT cache filled; cold: empty JIT and table caches), with the process's peak RSS.
+  process (warm: JIT cache filled; cold: empty JIT and table caches), with each run's own peak RSS.
 
 Every ratio in the README's speed section is computed from rows of one invocation of this
 command, on one machine, in one process (``simulate`` rows) or back to back (CLI rows).
@@ -23,7 +23,6 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import resource
 import statistics
 import subprocess
 import sys
@@ -100,30 +99,42 @@ def simulate_row(name, repeat):
     }
 
 
+# runs one command in a child and prints its wall time [s] and peak RSS [kB]: a fresh parent per
+# measurement, so RUSAGE_CHILDREN holds exactly that command (not the cold run before it)
+_MEASURE = (
+    "import resource, subprocess, sys, time; t0 = time.perf_counter(); "
+    "subprocess.run(sys.argv[1:], check=True, capture_output=True); "
+    "print(time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)"
+)
+
+
 def cli_row(joint):
-    """(warm [s], cold [s], peak RSS of the warm run [MB]) of the CLI run in fresh processes."""
+    """(warm [s], cold [s], peak RSS of the cold and the warm run [MB]) of the CLI run, each in a
+    fresh process."""
     exe = [sys.executable, "-m", "jointdyn", "run", "slider-crank", "--joint", joint, "--revs", str(REVS)]
     out = {}
     with tempfile.TemporaryDirectory() as cache:
         cold_env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(cache, "numba"), XDG_CACHE_HOME=cache)
-        for label, env in (("cold", cold_env), ("warm", cold_env), ("warm2", cold_env)):
+        for label in ("cold", "warm", "warm2"):
             with tempfile.TemporaryDirectory() as d:
-                before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
-                t0 = time.perf_counter()
-                subprocess.run(
-                    exe + ["--out", os.path.join(d, "o")], check=True, env=env, cwd=ROOT, capture_output=True
+                r = subprocess.run(
+                    [sys.executable, "-c", _MEASURE, *exe, "--out", os.path.join(d, "o")],
+                    check=True,
+                    env=cold_env,
+                    cwd=ROOT,
+                    capture_output=True,
+                    text=True,
                 )
-                out[label] = time.perf_counter() - t0
-                out[label + "_rss"] = (
-                    max(before, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss) / 1024
-                )
+                wall, rss = r.stdout.split()
+                out[label], out[label + "_rss"] = float(wall), float(rss) / 1024
     warm = min(out["warm"], out["warm2"])
     return {
         "case": f"cli {joint}",
         "cli_warm_s": warm,
         "cli_cold_s": out["cold"],
         "cold/warm": out["cold"] / warm,
-        "rss_MB": out["warm_rss"],
+        "rss_cold_MB": out["cold_rss"],
+        "rss_warm_MB": max(out["warm_rss"], out["warm2_rss"]),
     }
 
 
@@ -169,7 +180,8 @@ def main(argv=None):
         )
     if not (a.quick or a.no_cli):
         cli = [cli_row(j) for j in CLI_JOINTS]
-        lines += ["", _table(cli, ["case", "cli_warm_s", "cli_cold_s", "cold/warm", "rss_MB"])]
+        cols = ["case", "cli_warm_s", "cli_cold_s", "cold/warm", "rss_cold_MB", "rss_warm_MB"]
+        lines += ["", _table(cli, cols)]
     text = "\n".join(lines)
     print(text)
     if a.write is not None:
