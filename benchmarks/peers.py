@@ -167,7 +167,7 @@ def main(argv=None):
         )
         if best is not None:
             text += (
-                f"; at the loosest tolerance still more accurate than Exudyn ({best['setting']}, "
+                f"; at the fastest jointdyn tolerance still more accurate than Exudyn ({best['setting']}, "
                 f"error {best['error']:.2g}) {peer['wall_s'] / best['wall_s']:.1f}× faster."
             )
         lines.append(text + "\n")
