@@ -13,7 +13,6 @@ from fd_reference import central
 from jointdyn.config import load_model
 from jointdyn.dynamics import rhs
 from jointdyn.forces.element_jacobians import force_jacobian
-from jointdyn.forces.journal import ClearanceJoint, JournalBearing
 from jointdyn.jacobian import system_jacobian
 from jointdyn.models.slider_crank import JOINTS, slider_crank
 from jointdyn.simulate import SimConfig, simulate
@@ -111,11 +110,11 @@ def check(system, t_end, n_states=12, baumgarte=0.0, seed=0, vel_step=0.1):
         f0 = np.empty(nn)
         rhs(t, y, mem, P, f0)
         assert system_jacobian(t, y, f0, mem, P, Jm, ft, np.empty(nn), np.empty(nn)) == 0
-        # the journal elements took the exact path (only other element types use the fallback)
+        # every element took an exact path [T98, T118] (no journal at e = 0 on these states)
         n = system.n
         dQ = np.empty((n, n))
         n_fd = force_jacobian(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables, dQ, dQ.copy(), np.empty(n))
-        assert n_fd == sum(not isinstance(e, (JournalBearing, ClearanceJoint)) for e in system.elements)
+        assert n_fd == 0
         Jf, ftf = fd_jacobian(t, y, mem, P, vel_step)
         # a driven angle has φ̈ = α whatever the state: its Jacobian row vanishes up to rounding
         # (the reference there is pure rounding noise, eps·|Φ_qᵀλ|/(I h), so it is not compared)
@@ -189,15 +188,15 @@ def test_four_bar_lubricated():
 
 
 def test_engine_with_two_bearings_and_a_tabulated_force():
-    """Two film bearings (exact) and a tabulated gas force (finite-difference fallback [T100])."""
+    """Two film bearings and a tabulated gas force reading the crank angle (all exact [T118])."""
     model, _ = load_model(EXAMPLES / "engine_single_cylinder.toml")
     err, noise = check(model.compile(), 0.01, n_states=8)
     assert err <= TOL, f"{err:.3g} (reference noise {noise:.3g})"
 
 
-def test_fallback_differentiates_a_tabulated_force_of_another_body():
-    """The gas force F(φ_crank) on the piston has no analytic Jacobian: the finite-difference
-    fallback [T100] must find ∂Q_piston/∂φ_crank = F′(s)·d (F′ the table slope, d = (−1, 0))."""
+def test_tabulated_force_of_another_body():
+    """The gas force F(φ_crank) on the piston: the exact Jacobian [T118] (no fallback) has
+    ∂Q_piston/∂φ_crank = F′(s)·d (F′ the table slope, d = (−1, 0))."""
     model, _ = load_model(EXAMPLES / "engine_single_cylinder.toml")
     system = model.compile()
     k = system.element_names.index("gas")
@@ -229,8 +228,8 @@ def test_fallback_differentiates_a_tabulated_force_of_another_body():
             dQd,
             np.empty(n),
         )
-        assert n_fd == 1
-        # central differences of a linear function: rounding only, ε^(2/3) ≈ 4e-11 relative
+        assert n_fd == 0
+        # the slope of the same table, computed two ways: rounding only
         assert abs(dQ[ip, ic] - (-slope)) <= 1e-8 * abs(slope) + 1e-9
         assert abs(dQ[ip + 1, ic]) <= 1e-9
 
@@ -239,8 +238,23 @@ def test_fallback_elements_are_named():
     from jointdyn.forces.element_jacobians import fallback_elements
 
     model, _ = load_model(EXAMPLES / "engine_single_cylinder.toml")
-    assert fallback_elements(model.compile()) == ["gas"]
+    assert fallback_elements(model.compile()) == []
     assert fallback_elements(slider_crank("alshaer2005").compile()) == []
+
+
+@pytest.mark.parametrize("example", ["four_bar_lubricated", "engine_single_cylinder", "ueda"])
+def test_model_files_run_without_the_fallback_warning(example):
+    """With default settings (jacobian="exact" for the stiff solvers) a model-file run emits no
+    "no exact Jacobian" warning: every element of these models is differentiated exactly."""
+    import dataclasses
+    import warnings
+
+    model, cfg = load_model(EXAMPLES / f"{example}.toml")
+    cfg = dataclasses.replace(cfg, t_end=min(cfg.t_end, 0.002), n_out=5, solver="rodas4")
+    with warnings.catch_warnings():
+        warnings.filterwarnings("error", message=".*no exact Jacobian.*")
+        res = simulate(model.compile(), cfg)
+    assert res.t[-1] == pytest.approx(cfg.t_end)
 
 
 def test_simulate_with_the_exact_jacobian():

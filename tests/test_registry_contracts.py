@@ -406,3 +406,49 @@ def test_friction_jacobian_contract(name):
         h = 1e-7 * abs(vt)
         fd = (friction_coefficient(law.code, vt + h, p) - friction_coefficient(law.code, vt - h, p)) / (2 * h)
         assert abs(dmu - fd) <= 1e-5 * abs(fd) + 1e-6 * law.coefficient / abs(vt)
+
+
+# ------------------------------------------------------------------ element Jacobians (all)
+@pytest.mark.parametrize("label,element", ELEMENT_EXAMPLES, ids=[n for n, _ in ELEMENT_EXAMPLES])
+def test_element_jacobian_contract(label, element):
+    """Every registered element has a Jacobian in ``force_jacobian`` (exact [T98, T118] or the
+    finite-difference fallback [T100]) that matches central differences [T95] of its own force,
+    and ``fallback_elements`` names it exactly when it takes the fallback."""
+    from fd_reference import central
+
+    from jointdyn.forces.element_jacobians import fallback_elements, force_jacobian
+
+    sysm = _compiled(element)
+    mem = np.zeros((1, NMEM))
+    if "onset_velocity" in type(element).MEMORY:  # as in _forces: in contact since a fast onset
+        mem[0, list(type(element).MEMORY).index("in_contact")] = 1.0
+        mem[0, list(type(element).MEMORY).index("onset_velocity")] = 5.0
+    rng = np.random.default_rng(8)
+    t = 0.01
+    worst = 0.0
+    for _ in range(8):
+        q, qd = _random_state(rng, element)
+        dq, dqd, dt = np.empty((6, 6)), np.empty((6, 6)), np.empty(6)
+        n_fd = force_jacobian(t, q, qd, mem, sysm.fint, sysm.freal, sysm.tables, dq, dqd, dt)
+        assert n_fd == (1 if fallback_elements(sysm) else 0)
+        Ja = np.hstack([dq, dqd, dt[:, None]])
+
+        def Q(tt, qq, vv):
+            out = np.zeros(6)
+            eval_forces(tt, qq, vv, mem, sysm.fint, sysm.freal, sysm.tables, out, np.zeros((1, NOUT)))
+            return out
+
+        Jf = np.empty((6, 13))
+        for j in range(6):
+            # largest steps [m, rad], ≪ the clearance of the journal examples; the reference
+            # searches 7 steps down to 4^-6 of these (in contact, δ ≥ 5e-4 c: steps below δ)
+            hq = (1e-7 if j % 3 != 2 else 3e-6) * (1.0 if getattr(element, "contact", None) is None else 1e-2)
+            Jf[:, j] = central(lambda v, j=j: Q(t, np.where(np.arange(6) == j, v, q), qd), q[j], hq)
+            hv = 1e-6 * max(1.0, abs(qd[j]))
+            Jf[:, 6 + j] = central(lambda v, j=j: Q(t, q, np.where(np.arange(6) == j, v, qd)), qd[j], hv)
+        Jf[:, 12] = central(lambda tt: Q(tt, q, qd), t, 1e-6)
+        # column measure of tests/test_jacobians_system.py (floor 1e-9 of the largest column)
+        floor = 1e-9 * max(np.abs(Ja).max(), np.abs(Jf).max(), 1e-300)
+        sc = np.maximum(np.maximum(np.abs(Ja).max(axis=0), np.abs(Jf).max(axis=0)), floor)
+        worst = max(worst, float((np.abs(Ja - Jf).max(axis=0) / sc).max()))
+    assert worst <= 1e-6, f"{label}: {worst:.3g}"  # the issue's goal for every force law

@@ -1,8 +1,9 @@
-"""Exact Jacobians of the force elements, ∂Q/∂(q, q̇) and ∂Q/∂t (compiled) [T98–T100].
+"""Exact Jacobians of the force elements, ∂Q/∂(q, q̇) and ∂Q/∂t (compiled) [T98–T100, T118].
 
 The journal element (film and/or contact) is differentiated through its kinematics by the chain
-rule over the 12 local variables z = (q_i, q_j, q̇_i, q̇_j) [T98]; an element without an analytic
-Jacobian (spring–damper, tabulated force, a film model not in ``HAS_JACOBIAN``) is
+rule over the 12 local variables z = (q_i, q_j, q̇_i, q̇_j) [T98]; spring–damper, torsional spring,
+harmonic torque and tabulated force in closed form [T118]; an element without an analytic
+Jacobian (a film model not in ``HAS_JACOBIAN``, a spring at zero length, a journal at e = 0) is
 differentiated by central differences of its own contribution [T100], so every element is
 covered and the fallback is checked against the same references.
 """
@@ -47,20 +48,17 @@ from .journal import (
     XI_GUARD,
     journal_kinematics,
 )
-
-
-@njit(cache=True)
-def _pair_jac(DQ, F, DF, ajx, ajy, Daj, aix, aiy, Dai):
-    """Add ∂/∂z of the pair transfer [T8] (F on j at arm a_j, −F on i at arm a_i) to DQ (6, 12)."""
-    for c in range(12):
-        mj = ajx * DF[1, c] - ajy * DF[0, c] + Daj[0, c] * F[1] - Daj[1, c] * F[0]
-        mi = aix * DF[1, c] - aiy * DF[0, c] + Dai[0, c] * F[1] - Dai[1, c] * F[0]
-        DQ[3, c] += DF[0, c]
-        DQ[4, c] += DF[1, c]
-        DQ[5, c] += mj
-        DQ[0, c] -= DF[0, c]
-        DQ[1, c] -= DF[1, c]
-        DQ[2, c] -= mi
+from .simple_jacobians import (
+    harmonic_torque_dt,
+    spring_damper_jacobian,
+    tabulated_force_jacobian,
+    torsion_spring_jacobian,
+)
+from .springs import SPRING_DAMPER
+from .tabulated import TABLE as TAB_TABLE
+from .tabulated import TABULATED_FORCE
+from .torsion import HARMONIC_TORQUE, TORSION_SPRING
+from .transfer import pair_jac
 
 
 @njit(cache=True)
@@ -145,7 +143,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
             DF[0, k] = ux * Dfr[k] + fr * Du[0, k] + tx * Dft[k] + ft * Dt[0, k]
             DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
         # film force at the journal centre: a_j = s_j, a_i = s_i + e [T8, T15]
-        _pair_jac(DQ, F, DF, sjx, sjy, Dsj, six + ex, siy + ey, Dsi + De)
+        pair_jac(DQ, F, DF, sjx, sjy, Dsj, six + ex, siy + ey, Dsi + De)
         if ip[SHEAR] != 0:
             # shear torques M_J = −M_C − (e/2)F_t, M_B' = M_C + (e/2)F_t with
             # M_C = K(ω_J − ω_B)/√(1−ξ_f²), K = 2πμR³L/c [T75]
@@ -185,7 +183,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
             cx = r[R_J] * ux
             cy = r[R_J] * uy
             Dc = r[R_J] * Du
-            _pair_jac(DQ, F, DF, sjx + cx, sjy + cy, Dsj + Dc, six + ex + cx, siy + ey + cy, Dsi + De + Dc)
+            pair_jac(DQ, F, DF, sjx + cx, sjy + cy, Dsj + Dc, six + ex + cx, siy + ey + cy, Dsi + De + Dc)
     return 0
 
 
@@ -258,15 +256,27 @@ def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt):
     DQ = np.empty((6, 12))
     n_fd = 0
     for k in range(fint.shape[0]):
-        if fint[k, TYPE] == JOURNAL:
-            DQ[:, :] = 0.0
-            if (
-                journal_jacobian(
-                    q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, DQ
-                )
-                == 0
-            ):
-                _scatter(DQ, fint[k, BODY_I], fint[k, BODY_J], dQdq, dQdqd)
+        typ = fint[k, TYPE]
+        bi = fint[k, BODY_I]
+        bj = fint[k, BODY_J]
+        DQ[:, :] = 0.0
+        if typ == HARMONIC_TORQUE:  # M(t) only: no q, q̇ terms [T118]
+            harmonic_torque_dt(t, bj, freal[k], dQdt)
+            continue
+        if typ == TABULATED_FORCE:
+            tabulated_force_jacobian(t, q, qd, bj, fint[k], freal[k], tables[fint[k, TAB_TABLE]], dQdq, dQdt)
+            continue
+        if typ == TORSION_SPRING:
+            torsion_spring_jacobian(q, bi, bj, freal[k], DQ)
+            _scatter(DQ, bi, bj, dQdq, dQdqd)
+            continue
+        if typ == SPRING_DAMPER:
+            if spring_damper_jacobian(q, qd, bi, bj, freal[k], DQ) == 0:
+                _scatter(DQ, bi, bj, dQdq, dQdqd)
+                continue
+        elif typ == JOURNAL:
+            if journal_jacobian(q, qd, mem[k], bi, bj, fint[k], freal[k], tables, DQ) == 0:
+                _scatter(DQ, bi, bj, dQdq, dQdqd)
                 continue
         _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt)
         n_fd += 1
@@ -275,14 +285,18 @@ def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt):
 
 def fallback_elements(system) -> list[str]:
     """Names of the elements of a compiled system whose Jacobian comes from the finite-difference
-    fallback [T100] (journal elements use it additionally at e = 0 only): for a one-time notice."""
+    fallback [T100] (journal elements use it additionally at e = 0 only, spring–dampers at zero
+    length [T118]): for a one-time notice."""
     from .film_jacobians import HAS_JACOBIAN
     from .film_models import film_model
     from .journal import ClearanceJoint, JournalBearing
+    from .springs import SpringDamper
+    from .tabulated import TabulatedForce
+    from .torsion import HarmonicTorque, TorsionSpring
 
     names = []
     for name, e in zip(system.element_names, system.elements, strict=True):
-        if isinstance(e, ClearanceJoint):
+        if isinstance(e, (ClearanceJoint, SpringDamper, TorsionSpring, HarmonicTorque, TabulatedForce)):
             continue
         if isinstance(e, JournalBearing) and film_model(e.film).code in HAS_JACOBIAN:
             continue

@@ -37,3 +37,17 @@ def pair_power(qd, bi, bj, fx, fy, ajx, ajy, aix, aiy):
         k = 3 * bi
         p -= fx * qd[k] + fy * qd[k + 1] + (aix * fy - aiy * fx) * qd[k + 2]
     return p
+
+
+@njit(cache=True)
+def pair_jac(DQ, F, DF, ajx, ajy, Daj, aix, aiy, Dai):
+    """Add ∂/∂z of the pair transfer [T8, T99] (F on j at arm a_j, −F on i at arm a_i) to DQ (6, 12)."""
+    for c in range(12):
+        mj = ajx * DF[1, c] - ajy * DF[0, c] + Daj[0, c] * F[1] - Daj[1, c] * F[0]
+        mi = aix * DF[1, c] - aiy * DF[0, c] + Dai[0, c] * F[1] - Dai[1, c] * F[0]
+        DQ[3, c] += DF[0, c]
+        DQ[4, c] += DF[1, c]
+        DQ[5, c] += mj
+        DQ[0, c] -= DF[0, c]
+        DQ[1, c] -= DF[1, c]
+        DQ[2, c] -= mi
