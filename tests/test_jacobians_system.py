@@ -194,6 +194,14 @@ def test_engine_with_two_bearings_and_a_tabulated_force():
     assert err <= TOL, f"{err:.3g} (reference noise {noise:.3g})"
 
 
+def test_ueda_torsion_spring_and_harmonic_torque():
+    """The rotor on a revolute joint, cubic torsion spring and harmonic moment: ∂f/∂y and ∂f/∂t
+    (the moment's ∂M/∂t [T118]) through the constrained system [T101]."""
+    model, _ = load_model(EXAMPLES / "ueda.toml")
+    err, noise = check(model.compile(), 6.0, n_states=8)
+    assert err <= TOL, f"{err:.3g} (reference noise {noise:.3g})"
+
+
 def test_tabulated_force_of_another_body():
     """The gas force F(φ_crank) on the piston: the exact Jacobian [T118] (no fallback) has
     ∂Q_piston/∂φ_crank = F′(s)·d (F′ the table slope, d = (−1, 0))."""
