@@ -58,7 +58,7 @@ from .springs import SPRING_DAMPER
 from .tabulated import TABLE as TAB_TABLE
 from .tabulated import TABULATED_FORCE
 from .torsion import HARMONIC_TORQUE, TORSION_SPRING
-from .transfer import pair_jac
+from .transfer import pair_jac, pair_rates
 
 
 @njit(cache=True)
@@ -81,23 +81,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
     tx = -uy
     ty = ux
     # ∂e/∂z and ∂ė/∂z [T14, T98]
-    De = np.zeros((2, 12))
-    De[0, 0] = -1.0
-    De[1, 1] = -1.0
-    De[0, 2] = siy
-    De[1, 2] = -six
-    De[0, 3] = 1.0
-    De[1, 4] = 1.0
-    De[0, 5] = -sjy
-    De[1, 5] = sjx
-    Ded = np.zeros((2, 12))
-    for k in range(6):
-        Ded[0, 6 + k] = De[0, k]
-        Ded[1, 6 + k] = De[1, k]
-    Ded[0, 2] = wi * six
-    Ded[1, 2] = wi * siy
-    Ded[0, 5] = -wj * sjx
-    Ded[1, 5] = -wj * sjy
+    De, Ded = pair_rates(six, siy, sjx, sjy, wi, wj)
     tde = tx * De[0] + ty * De[1]
     ude = ux * De[0] + uy * De[1]
     Du = np.empty((2, 12))  # du = t (t·de)/e

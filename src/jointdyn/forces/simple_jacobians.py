@@ -18,10 +18,9 @@ from ..kinematics import point_kinematics
 from ..layout import ETA_I, ETA_J, XI_I, XI_J
 from .springs import L0, D, K
 from .tabulated import ARGUMENT as TARG
-from .tabulated import DIR_X, DIR_Y, PERIOD, TIME
-from .tabulated import ROWS as TROWS
+from .tabulated import DIR_X, DIR_Y, TIME, table_value
 from .torsion import AMP, K1, K3, OMEGA, PHASE, THETA0, C
-from .transfer import pair_jac
+from .transfer import pair_jac, pair_rates
 
 
 @njit(cache=True)
@@ -46,23 +45,7 @@ def spring_damper_jacobian(q, qd, bi, bj, r, DQ):
     vx = vjx - vix
     vy = vjy - viy
     # ∂d/∂z and ∂ḋ/∂z, d = P_j − P_i (the same kinematics as the journal's e, [T98])
-    Dd = np.zeros((2, 12))
-    Dd[0, 0] = -1.0
-    Dd[1, 1] = -1.0
-    Dd[0, 2] = siy
-    Dd[1, 2] = -six
-    Dd[0, 3] = 1.0
-    Dd[1, 4] = 1.0
-    Dd[0, 5] = -sjy
-    Dd[1, 5] = sjx
-    Dv = np.zeros((2, 12))
-    for k in range(6):
-        Dv[0, 6 + k] = Dd[0, k]
-        Dv[1, 6 + k] = Dd[1, k]
-    Dv[0, 2] = wi * six
-    Dv[1, 2] = wi * siy
-    Dv[0, 5] = -wj * sjx
-    Dv[1, 5] = -wj * sjy
+    Dd, Dv = pair_rates(six, siy, sjx, sjy, wi, wj)
     tv = tx * vx + ty * vy
     elld = ux * vx + uy * vy
     f = -(r[K] * (ell - r[L0]) + r[D] * elld)
@@ -117,30 +100,7 @@ def tabulated_force_jacobian(t, q, qd, bj, ip, r, tab, dQdq, dQdt):
     (global columns: the argument s may be another body's angle). f′ is the slope of the cell the
     kernel interpolates in (right-hand cell at a node, 0 beyond the table ends); ds/d(arg) = 1
     (the period wrap is piecewise constant). Returns 0."""
-    n = ip[TROWS]
-    if ip[TARG] == TIME:
-        s = t
-    else:
-        s = q[3 * ip[TARG] + 2] if ip[TARG] >= 0 else 0.0
-    if r[PERIOD] > 0.0:
-        s = s - r[PERIOD] * math.floor(s / r[PERIOD])
-    fp = 0.0
-    if tab[0, 0] < s < tab[n - 1, 0]:
-        lo = 0
-        hi = n - 1
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            if tab[mid, 0] <= s:
-                lo = mid
-            else:
-                hi = mid
-        fp = (tab[hi, 1] - tab[lo, 1]) / (tab[hi, 0] - tab[lo, 0])
-        w = (s - tab[lo, 0]) / (tab[hi, 0] - tab[lo, 0])
-        f = (1.0 - w) * tab[lo, 1] + w * tab[hi, 1]
-    elif s <= tab[0, 0]:
-        f = tab[0, 1]
-    else:
-        f = tab[n - 1, 1]
+    _, f, fp = table_value(t, q, qd, ip, r, tab)
     if bj < 0:
         return 0
     dx = r[DIR_X]

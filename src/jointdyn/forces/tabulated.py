@@ -90,8 +90,10 @@ class TabulatedForce:
 
 
 @njit(cache=True)
-def tabulated_force(t, q, qd, bj, ip, r, tab, Q, out):
-    """Apply the tabulated force [T17] (slots: ``INT``, ``REAL``); tab rows (x, y)."""
+def table_value(t, q, qd, ip, r, tab):
+    """(s, f(s), f′(s)) of a tabulated force [T17]: its argument s (time or a body's angle,
+    wrapped by the period), the table linearly interpolated (held constant beyond its ends) and
+    the slope of the cell s lies in (right-hand cell at a node, 0 beyond the ends) [T118]."""
     n = ip[ROWS]
     if ip[ARGUMENT] == TIME:
         s = t
@@ -100,20 +102,25 @@ def tabulated_force(t, q, qd, bj, ip, r, tab, Q, out):
     if r[PERIOD] > 0.0:
         s = s - r[PERIOD] * math.floor(s / r[PERIOD])
     if s <= tab[0, 0]:
-        f = tab[0, 1]
-    elif s >= tab[n - 1, 0]:
-        f = tab[n - 1, 1]
-    else:
-        lo = 0
-        hi = n - 1
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            if tab[mid, 0] <= s:
-                lo = mid
-            else:
-                hi = mid
-        w = (s - tab[lo, 0]) / (tab[hi, 0] - tab[lo, 0])
-        f = (1.0 - w) * tab[lo, 1] + w * tab[hi, 1]
+        return s, tab[0, 1], 0.0
+    if s >= tab[n - 1, 0]:
+        return s, tab[n - 1, 1], 0.0
+    lo = 0
+    hi = n - 1
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if tab[mid, 0] <= s:
+            lo = mid
+        else:
+            hi = mid
+    w = (s - tab[lo, 0]) / (tab[hi, 0] - tab[lo, 0])
+    return s, (1.0 - w) * tab[lo, 1] + w * tab[hi, 1], (tab[hi, 1] - tab[lo, 1]) / (tab[hi, 0] - tab[lo, 0])
+
+
+@njit(cache=True)
+def tabulated_force(t, q, qd, bj, ip, r, tab, Q, out):
+    """Apply the tabulated force [T17] (slots: ``INT``, ``REAL``); tab rows (x, y)."""
+    s, f, _ = table_value(t, q, qd, ip, r, tab)
     fx = f * r[DIR_X]
     fy = f * r[DIR_Y]
     px, py, sx, sy, vx, vy = point_kinematics(q, qd, bj, r[XI_J], r[ETA_J])

@@ -8,6 +8,7 @@ line, so the pair has no net moment (Newton's third law, the paper's eqs 20–22
 
 from __future__ import annotations
 
+import numpy as np
 from numba import njit
 
 
@@ -51,3 +52,28 @@ def pair_jac(DQ, F, DF, ajx, ajy, Daj, aix, aiy, Dai):
         DQ[0, c] -= DF[0, c]
         DQ[1, c] -= DF[1, c]
         DQ[2, c] -= mi
+
+
+@njit(cache=True)
+def pair_rates(six, siy, sjx, sjy, wi, wj):
+    """∂d/∂z and ∂ḋ/∂z (each (2, 12)) of d = P_j − P_i between points on bodies i and j,
+    z = (q_i, q_j, q̇_i, q̇_j); s = the points' arms from the body origins [m], w = the bodies'
+    angular speeds [rad/s] [T98]."""
+    D = np.zeros((2, 12))
+    D[0, 0] = -1.0
+    D[1, 1] = -1.0
+    D[0, 2] = siy
+    D[1, 2] = -six
+    D[0, 3] = 1.0
+    D[1, 4] = 1.0
+    D[0, 5] = -sjy
+    D[1, 5] = sjx
+    Dv = np.zeros((2, 12))
+    for k in range(6):
+        Dv[0, 6 + k] = D[0, k]
+        Dv[1, 6 + k] = D[1, k]
+    Dv[0, 2] = wi * six
+    Dv[1, 2] = wi * siy
+    Dv[0, 5] = -wj * sjx
+    Dv[1, 5] = -wj * sjy
+    return D, Dv
