@@ -41,11 +41,28 @@ def poincare(revs: int = 220, transient: int = 20):
     )
 
 
-def lyapunov():
-    from jointdyn.chaos.lyapunov import plot_running, system_lyapunov
+def lyapunov_row(joint: str, rtol: float, d0: float):
+    """One entry of the page's Lyapunov table: 40 averaging revolutions after 10, τ = T/16,
+    norm time scale 1/ω, atol = 1e-3·rtol (also run by tests/test_docs_chaos_current.py)."""
+    from jointdyn.chaos.lyapunov import system_lyapunov
     from jointdyn.models import slider_crank as sc
 
     T = 2 * math.pi / sc.SPEED
+    return system_lyapunov(
+        sc.slider_crank(joint).compile(),
+        tau=T / 16,
+        n_segments=16 * 40,
+        transient=10 * T,
+        time_scale=1 / sc.SPEED,
+        d0=d0,
+        rtol=rtol,
+        atol=rtol * 1e-3,
+    )
+
+
+def lyapunov():
+    from jointdyn.chaos.lyapunov import plot_running
+
     rows = []
     for joint, rtol, d0 in (
         ("dry", 1e-9, 1e-8),
@@ -63,16 +80,7 @@ def lyapunov():
         ("alshaer2005", 1e-8, 1e-8),
         ("alshaer2005", 1e-9, 1e-8),
     ):
-        r = system_lyapunov(
-            sc.slider_crank(joint).compile(),
-            tau=T / 16,
-            n_segments=16 * 40,
-            transient=10 * T,
-            time_scale=1 / sc.SPEED,
-            d0=d0,
-            rtol=rtol,
-            atol=rtol * 1e-3,
-        )
+        r = lyapunov_row(joint, rtol, d0)
         rows.append({"joint": joint, "rtol": rtol, "d0": d0, "lambda": r.exponent, "stderr": r.stderr})
         print(f"lyapunov {joint} rtol {rtol:g} d0 {d0:g}: {r.exponent:.1f} ± {r.stderr:.1f} 1/s")
         if rtol == 1e-9 and d0 == 1e-8 and joint == "dry":
