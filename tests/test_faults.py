@@ -182,8 +182,10 @@ def test_foreign_resume_is_refused_and_changes_nothing(tmp_path):
 
 def test_interrupted_sweep_records_status_and_resumes(tmp_path):
     spec, out = tmp_path / "a.toml", tmp_path / "s"
-    long = SWEEP.replace("revs = 0.1", "revs = 2.0").replace('"perfect"', '"alshaer2005"')
-    spec.write_text(long.format([500.0 + i for i in range(4)]))  # under a second per case
+    # ≈ 1 s per case with the radau5 default (≈ 12 ms per revolution): long enough that the signal
+    # lands while cases are still in flight, short enough for the resume
+    long = SWEEP.replace("revs = 0.1", "revs = 80.0").replace('"perfect"', '"alshaer2005"')
+    spec.write_text(long.format([500.0 + i for i in range(4)]))
     p = start(["sweep", spec, "--out", out, "--workers", 2])
     wait_for(lambda: len(list((out / "cases").glob("case_*.json"))) >= 1, what="a finished case")
     p.send_signal(signal.SIGINT)
@@ -498,3 +500,19 @@ def test_version_and_list_and_help():
     for name in options.joints():
         assert name in r.output
     assert "[m]" in r.output and "[Pa·s]" in r.output
+
+
+def test_interrupted_ensemble_stops_its_workers_promptly(tmp_path):
+    """Ctrl-C during an ensemble (the pool shared with sweeps, jointdyn.pool) kills the workers
+    instead of waiting for the runs in flight (each of these would take ≳ 10 s)."""
+    out = tmp_path / "e"
+    p = start(
+        ["ensemble", "--joint", "dry", "--rtols", "1e-7,1e-8", "--revs", "400", "--workers", 2, "--out", out]
+    )
+    time.sleep(3.0)
+    t0 = time.time()
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130, err
+    one_line_error(err)
+    assert time.time() - t0 < 5.0  # 0.25 s polling + killing the workers; generous for a loaded machine

@@ -4,21 +4,35 @@ Registered into the main app by :func:`register` (see :mod:`jointdyn.cli`)."""
 
 from __future__ import annotations
 
+import functools
 import json
 import math
 from pathlib import Path
 
 import typer
 from rich.console import Console
-from rich.markup import escape
 from rich.table import Table
 
 console = Console()
 
 
 def _fail(err: Exception):
-    console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
+    typer.echo(f"error: {' '.join(str(err).split())}", err=True)
     raise typer.Exit(2) from None
+
+
+def _guarded(command):
+    """The command under the CLI's one-line errors and signal handling (Ctrl-C/SIGTERM: one
+    line, exit 130/143) [T142], like every other jointdyn command."""
+
+    @functools.wraps(command)
+    def run(*args, **kwargs):
+        from .cli import _one_line_errors
+
+        with _one_line_errors():
+            return command(*args, **kwargs)
+
+    return run
 
 
 def _speed_of(res, body: str = "crank") -> float:
@@ -221,7 +235,7 @@ def ensemble(
         r = slider_crank_ensemble(
             joint, tuple(float(v) for v in rtols.split(",")), replicas, revs, transient_revs, workers=workers
         )
-    except (ValueError, RuntimeError) as err:
+    except ValueError as err:  # SimulationError, Interrupted: the CLI wrapper (exit 1, 130/143)
         _fail(err)
     out.mkdir(parents=True, exist_ok=True)
     (out / "ensemble.json").write_text(json.dumps(r, indent=2))
@@ -245,8 +259,8 @@ def ensemble(
 
 def register(app: typer.Typer) -> None:
     """Add the chaos commands to the main CLI app."""
-    app.command()(poincare)
-    app.command()(bifurcation)
-    app.command()(lyapunov)
-    app.command()(spectrum)
-    app.command()(ensemble)
+    app.command()(_guarded(poincare))
+    app.command()(_guarded(bifurcation))
+    app.command()(_guarded(lyapunov))
+    app.command()(_guarded(spectrum))
+    app.command()(_guarded(ensemble))

@@ -31,7 +31,6 @@ Dataset (grid parameters as coordinates when the sweep is a pure grid), ``manife
 from __future__ import annotations
 
 import json
-import os
 import time
 import warnings
 from pathlib import Path
@@ -116,27 +115,6 @@ def run_case(base: dict, params: dict, series_path: str | None = None, arrays: d
         } | extra
     except Exception as err:  # recorded, the sweep goes on
         return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
-
-
-def _worker_init(parent: int) -> None:
-    """Worker processes ignore Ctrl-C (the parent stops them) and die with their parent
-    (Linux ``PR_SET_PDEATHSIG``), so a killed sweep leaves no orphans."""
-    import signal
-
-    from .rundir import close_inherited
-
-    close_inherited()
-    signal.signal(signal.SIGINT, signal.SIG_IGN)
-    signal.signal(signal.SIGTERM, signal.SIG_DFL)
-    try:
-        import ctypes
-
-        libc = ctypes.CDLL(None, use_errno=True)
-        libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG = 1
-    except (OSError, AttributeError):  # pragma: no cover - not Linux
-        pass
-    if os.getppid() != parent:  # the parent died before prctl took effect
-        os._exit(1)
 
 
 def _connect(scheduler: str, timeout: float = 8.0):
@@ -269,24 +247,10 @@ def _run(spec, od, cases, invalid, rec, client, workers, progress):
 
 
 def _local(spec, cases, todo, sp, workers, record) -> None:
-    from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+    from .pool import run_local
 
-    ex = ProcessPoolExecutor(
-        max_workers=workers or os.cpu_count(), initializer=_worker_init, initargs=(os.getpid(),)
-    )
-    try:
-        pending = {ex.submit(run_case, spec.base, cases[i], sp(i), spec.arrays): i for i in todo}
-        while pending:
-            finished, _ = wait(pending, timeout=0.25, return_when=FIRST_COMPLETED)
-            for fut in finished:
-                record(pending.pop(fut), fut.result())
-            interrupts.check()
-    except BaseException:
-        for p in list(getattr(ex, "_processes", {}).values()):  # stop the workers now
-            p.kill()
-        ex.shutdown(wait=False, cancel_futures=True)
-        raise
-    ex.shutdown(wait=True)
+    calls = ((i, (spec.base, cases[i], sp(i), spec.arrays)) for i in todo)
+    run_local(run_case, calls, workers, record)
 
 
 def gather(out: Path, spec: SweepSpec, cases: list[dict]):

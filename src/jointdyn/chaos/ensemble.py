@@ -183,7 +183,7 @@ def slider_crank_ensemble(
     processes, with the convergence check across tolerances (:func:`convergence`). Returns
     ``{"bands": {quantity: band + convergence}, "per_rtol": {rtol: {quantity: band}}, "settings"}``.
     """
-    from concurrent.futures import ProcessPoolExecutor
+    from ..pool import run_local
 
     if replicas < 1:
         raise ValueError(f"replicas = {replicas!r} [-]: must be ≥ 1")
@@ -193,8 +193,9 @@ def slider_crank_ensemble(
     cases = [(float(r), s) for r in rtols for s in range(replicas)]
     args = [(joint, model_kw, int(revs), int(transient_revs), r, s, int(samples_per_rev)) for r, s in cases]
     if (workers or os.cpu_count() or 1) > 1 and len(cases) > 1:
-        with ProcessPoolExecutor(max_workers=workers or os.cpu_count()) as ex:
-            results = list(ex.map(_run_case, *zip(*args)))
+        out: dict[int, dict] = {}
+        run_local(_run_case, enumerate(args), workers, out.__setitem__)
+        results = [out[i] for i in range(len(args))]
     else:
         results = [_run_case(*a) for a in args]
     groups: dict[str, dict[str, np.ndarray]] = {}
