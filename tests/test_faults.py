@@ -509,7 +509,18 @@ def test_interrupted_ensemble_stops_its_workers_promptly(tmp_path):
     p = start(
         ["ensemble", "--joint", "dry", "--rtols", "1e-7,1e-8", "--revs", "400", "--workers", 2, "--out", out]
     )
-    time.sleep(3.0)
+
+    def children() -> int:  # worker processes of the ensemble (Linux /proc)
+        n = 0
+        for d in Path("/proc").iterdir():
+            try:
+                n += d.name.isdigit() and f"PPid:\t{p.pid}\n" in (d / "status").read_text()
+            except OSError:
+                pass
+        return n
+
+    wait_for(lambda: children() >= 2, what="the ensemble's worker processes")
+    time.sleep(0.5)
     t0 = time.time()
     p.send_signal(signal.SIGINT)
     _, err = p.communicate(timeout=60)
