@@ -13,7 +13,6 @@ import os
 import warnings
 from pathlib import Path
 
-import click
 import typer
 from rich.console import Console
 from rich.markup import escape
@@ -91,6 +90,22 @@ def _fail(msg: str, code: int = 2) -> typer.Exit:
     return typer.Exit(code)
 
 
+def _click_exceptions() -> tuple[type[BaseException], ...]:
+    """typer's own exits and usage errors: typer ≥ 0.2x vendors click (``typer.TyperException``),
+    older typer re-exports the separate ``click`` package, which is then installed."""
+    found: list[type[BaseException]] = [typer.Exit, typer.Abort]
+    if hasattr(typer, "TyperException"):
+        found.append(typer.TyperException)
+    try:
+        import click
+    except ImportError:  # typer ≥ 0.2x does not depend on click
+        return tuple(found)
+    return (*found, click.ClickException)
+
+
+_PASS_THROUGH = _click_exceptions()
+
+
 @contextlib.contextmanager
 def _one_line_errors(out: Path | None = None):
     """Map every expected failure to one stderr line and its exit code; warnings to one line."""
@@ -117,7 +132,7 @@ def _one_line_errors(out: Path | None = None):
         raise _fail(f"{err}{where}", 1) from None
     except (ValueError, OSError) as err:  # ModelError, FieldError, OutputError are ValueErrors
         raise _fail(str(err) if str(err) else type(err).__name__) from None
-    except (typer.Exit, typer.Abort, click.ClickException):
+    except _PASS_THROUGH:
         raise
     except Exception as err:  # a bug: still one line, the traceback with JOINTDYN_DEBUG=1
         if os.environ.get("JOINTDYN_DEBUG"):
