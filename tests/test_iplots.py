@@ -32,3 +32,40 @@ def test_orbit_keeps_equal_aspect_and_film_log_scale(dry):
     # a dry gap goes negative during contact: linear axis, the minimum (a penetration) annotated
     assert film.layout.yaxis.type != "log" and "penetration" in film.layout.yaxis.title.text
     assert film.layout.annotations[0].text.startswith("min -")
+
+
+def _plot_args(html: str, div: str):
+    """The data and layout literals of ``Plotly.newPlot(div, data, layout, …)`` in a page."""
+    import json
+
+    dec = json.JSONDecoder()
+    i = html.index(f"Plotly.newPlot('{div}', ") + len(f"Plotly.newPlot('{div}', ")
+    data, j = dec.raw_decode(html, i)
+    layout, _ = dec.raw_decode(html, j + 2)
+    return data, layout
+
+
+def test_reproduction_page_carries_the_runs_and_plotly_js(dry, tmp_path):
+    from jointdyn import post
+    from jointdyn.reproduce import PAPER_CASES
+
+    case = next(c for c in PAPER_CASES if c.name == "dry")
+    out = iplots.reproduction_html({"dry": (dry, None, None, case)}, tmp_path / "i.html", 0.5)
+    html = out.read_text(encoding="utf-8")
+    assert html.count("<script>") == 3  # plotly.js once (offline page), then the two figures
+    data, layout = _plot_args(html, "moment")
+    a = dry.crank_angle()
+    np.testing.assert_array_equal(data[0]["x"], np.degrees(a - a[0]))  # the numbers, unrounded
+    np.testing.assert_array_equal(data[0]["y"], post.driving_moment(dry))
+    assert data[0]["name"] == case.label and layout["yaxis"]["title"]["text"] == "moment [N·m]"
+    orbit, olay = _plot_args(html, "orbit")
+    ex, ey = dry.last_revolutions(0.5).orbit("piston_pin")
+    np.testing.assert_array_equal(orbit[1]["x"], ex)
+    assert olay["yaxis"]["scaleanchor"] == "x"  # e/c drawn at equal aspect
+
+
+def test_page_literals_cannot_end_the_script_tag():
+    assert (
+        iplots._js({"name": "a</script>b", "y": np.array([1.0, np.nan])})
+        == '{"name": "a<\\/script>b", "y": [1.0, NaN]}'
+    )

@@ -8,6 +8,7 @@ lines, markers, annotations, axis labels, scales and title of an Axes into a plo
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -111,62 +112,124 @@ def run_figure(runs, what: str, **kw):
         plt.close(ax.figure)
 
 
+def _plotly_js() -> str:
+    """plotly.js as shipped in the plotly package (the ``[interactive]`` extra), for offline pages."""
+    from importlib.resources import files
+
+    try:
+        return files("plotly").joinpath("package_data", "plotly.min.js").read_text(encoding="utf-8")
+    except (ModuleNotFoundError, FileNotFoundError):
+        raise ImportError("interactive figures need plotly: pip install -e '.[interactive]'") from None
+
+
+def _js(obj) -> str:
+    """A figure spec as a JavaScript literal: arrays as lists, NaN/±inf as JavaScript's own
+    (the page draws gaps there, as plotly does), and no ``</`` that could end the script tag."""
+
+    def plain(o):
+        if isinstance(o, np.ndarray):
+            return [plain(v) for v in o.tolist()]
+        if isinstance(o, dict):
+            return {k: plain(v) for k, v in o.items()}
+        if isinstance(o, list | tuple):
+            return [plain(v) for v in o]
+        return o
+
+    return json.dumps(plain(obj), ensure_ascii=False).replace("</", "<\\/")
+
+
+_LAYOUT = {  # plotly's "plotly_white" look, written out: no template machinery needed
+    "paper_bgcolor": "white",
+    "plot_bgcolor": "white",
+    "xaxis": {"gridcolor": "#EBF0F8", "zerolinecolor": "#EBF0F8", "automargin": True},
+    "yaxis": {"gridcolor": "#EBF0F8", "zerolinecolor": "#EBF0F8", "automargin": True},
+}
+
+
+def _plot(div: str, data: list[dict], title: str, xlabel: str, ylabel: str, **layout) -> str:
+    lay = {
+        **_LAYOUT,
+        "title": {"text": title},
+        "xaxis": {**_LAYOUT["xaxis"], "title": {"text": xlabel}},
+        "yaxis": {**_LAYOUT["yaxis"], "title": {"text": ylabel}, **layout.pop("yaxis", {})},
+        **layout,
+    }
+    return (
+        f"<div id='{div}'></div><script>Plotly.newPlot('{div}', {_js(data)}, {_js(lay)}, "
+        "{responsive: true});</script>"
+    )
+
+
 def reproduction_html(runs: dict, out, revs: float) -> Path:
-    """One self-contained HTML page (plotly included) with the reproduction's moment curves
-    over the whole run (zoom into the dry spikes) and the last-revolution journal orbits."""
-    go = _plotly()
+    """One self-contained HTML page (plotly.js included) with the reproduction's moment curves
+    over the whole run (zoom into the dry spikes) and the last-revolution journal orbits.
+
+    The figure specs are written directly as plotly.js data and layout (no plotly Figure objects:
+    building and validating those took ≈ 40 MB and most of the page's time, [T173])."""
     from . import post
 
-    fig = go.Figure()
+    js = _plotly_js()
+    moments = []
     for res, _, _, case in runs.values():
         a = res.crank_angle()
-        fig.add_trace(
-            go.Scatter(
-                x=np.degrees(a - a[0]),
-                y=post.driving_moment(res),
-                mode="lines",
-                name=case.label,
-                line={"width": 1},
-            )
+        x, y = np.degrees(a - a[0]), post.driving_moment(res)
+        moments.append(
+            {"type": "scatter", "mode": "lines", "x": x, "y": y, "name": case.label, "line": {"width": 1}}
         )
-    fig.update_layout(
-        title=f"crank driving moment, {revs:g} revolutions (drag to zoom, double-click to reset)",
-        xaxis_title="crank angle [deg]",
-        yaxis_title="moment [N·m]",
-        template="plotly_white",
-        height=520,
-    )
-    parts = [fig.to_html(full_html=False, include_plotlyjs=True)]
+    parts = [
+        _plot(
+            "moment",
+            moments,
+            f"crank driving moment, {revs:g} revolution{'s' * (revs != 1)}"
+            " (drag to zoom, double-click to reset)",
+            "crank angle [deg]",
+            "moment [N·m]",
+            height=520,
+        )
+    ]
     journals = [n for n in runs if "piston_pin" in runs[n][0].journals()]
     if journals:
-        orb = go.Figure()
         th = np.linspace(0, 2 * np.pi, 361)
-        orb.add_trace(
-            go.Scatter(
-                x=np.cos(th),
-                y=np.sin(th),
-                mode="lines",
-                name="clearance circle (ξ = 1)",
-                line={"color": "black", "dash": "dash", "width": 1},
-            )
-        )
+        orbits = [
+            {
+                "type": "scatter",
+                "mode": "lines",
+                "x": np.cos(th),
+                "y": np.sin(th),
+                "name": "clearance circle (ξ = 1)",
+                "line": {"color": "black", "dash": "dash", "width": 1},
+            }
+        ]
         for n in journals:
             ex, ey = runs[n][0].last_revolutions(min(1.0, revs)).orbit("piston_pin")
-            orb.add_trace(go.Scatter(x=ex, y=ey, mode="lines", name=runs[n][3].label, line={"width": 1}))
-        orb.update_layout(
-            title="journal centre path e/c, last revolution, rod (bushing) frame",
-            xaxis_title="e_x/c [-]",
-            yaxis_title="e_y/c [-]",
-            template="plotly_white",
-            height=620,
-            width=760,
+            orbits.append(
+                {
+                    "type": "scatter",
+                    "mode": "lines",
+                    "x": ex,
+                    "y": ey,
+                    "name": runs[n][3].label,
+                    "line": {"width": 1},
+                }
+            )
+        parts.append(
+            _plot(
+                "orbit",
+                orbits,
+                "journal centre path e/c, last revolution, rod (bushing) frame",
+                "e_x/c [-]",
+                "e_y/c [-]",
+                yaxis={"scaleanchor": "x", "scaleratio": 1},
+                height=820,
+                width=700,
+                legend={"orientation": "h", "y": -0.12},
+            )
         )
-        orb.update_yaxes(scaleanchor="x", scaleratio=1)
-        parts.append(orb.to_html(full_html=False, include_plotlyjs=False))
     out = Path(out)
     out.write_text(
         "<!DOCTYPE html><html><head><meta charset='utf-8'>"
-        "<title>jointdyn — interactive reproduction</title></head>"
+        "<title>jointdyn — interactive reproduction</title>"
+        f"<script>{js}</script></head>"
         "<body style='font-family:sans-serif;max-width:1100px;margin:auto'>"
         "<h1>Alshaer et al. (2005) reproduction, interactive</h1>" + "".join(parts) + "</body></html>",
         encoding="utf-8",
