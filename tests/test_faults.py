@@ -23,7 +23,7 @@ from typer.testing import CliRunner
 from jointdyn import atomic, options
 from jointdyn.cli import app
 from jointdyn.config import dumps, load_model
-from jointdyn.errors import ModelError
+from jointdyn.errors import Interrupted, ModelError
 from jointdyn.forces.contact_laws import CONTACT_LAWS
 from jointdyn.forces.elements import FORCE_ELEMENTS
 from jointdyn.forces.film_models import FILM_MODELS
@@ -527,3 +527,27 @@ def test_interrupted_ensemble_stops_its_workers_promptly(tmp_path):
     assert p.returncode == 130, err
     one_line_error(err)
     assert time.time() - t0 < 5.0  # 0.25 s polling + killing the workers; generous for a loaded machine
+
+
+def test_signal_while_the_report_is_written_stops_it(tmp_path, monkeypatch):
+    """Ctrl-C after the simulations, while the figures are drawn: the reproduction stops before
+    the next file with status ``interrupted`` (it completed and said ``complete``), keeping the
+    files written so far, each whole."""
+    from jointdyn import interrupts, reproduce, rundir
+
+    real = reproduce.figures
+
+    def figures_then_ctrl_c(runs, revs):
+        figs = real(runs, revs)
+        interrupts._handler(signal.SIGINT, None)  # the signal arrives while the figures are drawn
+        return figs
+
+    monkeypatch.setattr(reproduce, "figures", figures_then_ctrl_c)
+    out = tmp_path / "r"
+    with interrupts.catching(), pytest.raises(Interrupted):
+        reproduce.reproduce_alshaer2005(out, beyond=False, revs=0.05, ensemble=False)
+    man = rundir.read_manifest(out)
+    assert man["status"] == "interrupted"
+    assert not (out / "report.html").exists() and not list(out.glob("*.png"))
+    assert (out / "summary.csv").exists()  # written before the signal, listed, whole
+    assert "summary.csv" in man["files"]

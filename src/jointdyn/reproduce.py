@@ -321,7 +321,7 @@ def reproduce_alshaer2005(
 
 
 def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
-    from . import atomic
+    from . import atomic, interrupts
     from .models import slider_crank as sc
 
     out = od.path
@@ -332,6 +332,7 @@ def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
         runs[case.name] = (res, cols, summ, case)
 
     def put(name: str, data: bytes) -> None:
+        interrupts.check()  # Ctrl-C while the report is written stops it (status interrupted)
         atomic.write_bytes(out / name, data)
         od.record(name)
 
@@ -370,6 +371,7 @@ def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
     try:  # the [interactive] extra: zoomable moment curves and orbits in interactive.html
         from .iplots import reproduction_html
 
+        interrupts.check()
         with od.write("interactive.html") as tmp:
             reproduction_html(runs, tmp, revs)
     except ImportError:
