@@ -267,79 +267,126 @@ def constraint_residuals(t, y, P):
 
 
 @njit(cache=True)
+def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam, eout, drift):
+    """One output sample (see :func:`outputs`), in place; scratch Phi, J, Phit, gam, S (m rows), Q (n).
+
+    The Schur complement Φ_q M⁻¹Φ_qᵀ at the final q is factored once and serves both the velocity
+    projection and the multipliers [T190]; Φ, Φ_q are evaluated once per Gauss–Newton iterate."""
+    minv, cint, creal, m = P.minv, P.cint, P.creal, P.n_rows
+    n = q.shape[0]
+    factored = False
+    if m > 0:
+        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        res = 0.0
+        for r in range(m):
+            res = max(res, abs(Phi[r]))
+        if do_project:
+            it = 0
+            ok = True
+            while res > tol and it < 6:  # Gauss–Newton, M-weighted minimal correction [T11]
+                _schur_into(S, J, minv, m, n)
+                for r in range(m):
+                    lam[r] = Phi[r]
+                if not cholesky_solve(S, lam):
+                    ok = False
+                    break
+                for c in range(n):
+                    s = 0.0
+                    for r in range(m):
+                        s += J[r, c] * lam[r]
+                    q[c] -= minv[c] * s
+                eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+                res = 0.0
+                for r in range(m):
+                    res = max(res, abs(Phi[r]))
+                it += 1
+            if ok:  # q̇ onto Φ̇ = Φ_t + Φ_q q̇ = 0 with Φ_q at the final q [T11]
+                _schur_into(S, J, minv, m, n)
+                factored = cholesky_factor(S)
+                if factored:
+                    for r in range(m):
+                        s = Phit[r]
+                        for c in range(n):
+                            s += J[r, c] * qd[c]
+                        lam[r] = s
+                    cholesky_substitute(S, lam)
+                    for c in range(n):
+                        s = 0.0
+                        for r in range(m):
+                            s += J[r, c] * lam[r]
+                        qd[c] -= minv[c] * s
+                    # γ depends on q̇: evaluate it at the projected velocities (Φ, Φ_q, Φ_t are
+                    # functions of (q, t) only and come out unchanged) [T190]
+                    eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        v = 0.0
+        for r in range(m):
+            s = Phit[r]
+            for c in range(n):
+                s += J[r, c] * qd[c]
+            v = max(v, abs(s))
+        drift[0] = res
+        drift[1] = v
+    # accelerations at the final (q, q̇): the same arithmetic as :func:`accelerations` [T10]
+    Q[:] = P.q0_force
+    eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout)
+    if m > 0:
+        a = P.stab[0]
+        if a > 0.0:
+            for r in range(m):
+                phid = Phit[r]
+                for c in range(n):
+                    phid += J[r, c] * qd[c]
+                gam[r] -= 2.0 * a * phid + a * a * Phi[r]
+        if not factored:
+            _schur_into(S, J, minv, m, n)
+        for r in range(m):
+            s = gam[r]
+            for c in range(n):
+                s -= J[r, c] * minv[c] * Q[c]
+            lam[r] = s
+        if not factored:
+            if not cholesky_factor(S):
+                return SINGULAR
+        cholesky_substitute(S, lam)
+        for c in range(n):
+            s = Q[c]
+            for r in range(m):
+                s += J[r, c] * lam[r]
+            qdd[c] = minv[c] * s
+    else:
+        for c in range(n):
+            qdd[c] = minv[c] * Q[c]
+    return OK
+
+
+@njit(cache=True)
 def outputs(ts, ys, mems, P, do_project):
     """Accelerations, multipliers and element outputs at saved states (post-processing).
 
     With ``do_project`` the (interpolated) output states are first projected on Φ = 0,
     Φ̇ = 0 in place [T11], as the integrator does with its step states: the same iteration as
     :func:`project` (Gauss–Newton until max |Φ| ≤ 1e-12, at most 6 steps, then q̇), fused with
-    the drift report so that Φ, Φ_q are evaluated once per iterate and nothing is allocated
-    per sample [T112]."""
+    the drift report and the accelerations so that Φ, Φ_q are evaluated once per iterate, the
+    Schur complement at the final q is factored once, and nothing is allocated per sample
+    [T112, T190]. Returns (q̈ (nt, n), λ (nt, m), element outputs (nt, nf, NOUT), drift (nt, 2):
+    max |Φ| [m or rad], max |Φ̇| [m/s or rad/s])."""
     nt = ts.shape[0]
     n = ys.shape[1] // 2
     m = P.n_rows
-    minv, cint, creal = P.minv, P.cint, P.creal
     nf = P.fint.shape[0]
     qdd = np.zeros((nt, n))
     lam = np.zeros((nt, max(m, 1)))
     eout = np.zeros((nt, nf, NOUT))
     drift = np.zeros((nt, 2))
-    mm = max(m, 1)
-    Phi = np.empty(mm)
-    J = np.empty((mm, n))
-    Phit = np.empty(mm)
-    gam = np.empty(mm)
-    S = np.empty((mm, mm))
-    x = np.empty(mm)
-    tol = 1e-12
+    Phi = np.empty(m)
+    J = np.empty((m, n))
+    Phit = np.empty(m)
+    gam = np.empty(m)
+    S = np.empty((m, m))
+    Q = np.empty(n)
     for i in range(nt):
-        t = ts[i]
-        q = ys[i, :n]
-        qd = ys[i, n:]
-        if m > 0:
-            eval_constraints(t, q, qd, cint, creal, Phi[:m], J[:m], Phit[:m], gam[:m])
-            res = 0.0
-            for r in range(m):
-                res = max(res, abs(Phi[r]))
-            ok = True
-            if do_project:
-                it = 0
-                while res > tol and it < 6:  # Gauss–Newton, M-weighted minimal correction [T11]
-                    _schur_into(S, J[:m], minv, m, n)
-                    x[:m] = Phi[:m]
-                    if not cholesky_solve(S, x[:m]):
-                        ok = False
-                        break
-                    for c in range(n):
-                        s = 0.0
-                        for r in range(m):
-                            s += J[r, c] * x[r]
-                        q[c] -= minv[c] * s
-                    eval_constraints(t, q, qd, cint, creal, Phi[:m], J[:m], Phit[:m], gam[:m])
-                    res = 0.0
-                    for r in range(m):
-                        res = max(res, abs(Phi[r]))
-                    it += 1
-                if ok:  # q̇ onto Φ̇ = Φ_t + Φ_q q̇ = 0 with Φ_q at the final q [T11]
-                    for r in range(m):
-                        s = Phit[r]
-                        for c in range(n):
-                            s += J[r, c] * qd[c]
-                        x[r] = s
-                    _schur_into(S, J[:m], minv, m, n)
-                    if cholesky_solve(S, x[:m]):
-                        for c in range(n):
-                            s = 0.0
-                            for r in range(m):
-                                s += J[r, c] * x[r]
-                            qd[c] -= minv[c] * s
-            v = 0.0
-            for r in range(m):
-                s = Phit[r]
-                for c in range(n):
-                    s += J[r, c] * qd[c]
-                v = max(v, abs(s))
-            drift[i, 0] = res
-            drift[i, 1] = v
-        accelerations(t, q, qd, mems[i], P, qdd[i], lam[i], eout[i])
+        _sample(
+            ts[i], ys[i, :n], ys[i, n:], mems[i], P, do_project, 1e-12,
+            Phi, J, Phit, gam, S, Q, qdd[i], lam[i], eout[i], drift[i],
+        )  # fmt: skip
     return qdd, lam[:, :m], eout, drift
