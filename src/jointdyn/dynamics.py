@@ -227,6 +227,10 @@ def project(t, y, P, tol):
     """Project y = [q, q̇] onto Φ = 0 (at most 6 Gauss–Newton corrections) and Φ̇ = 0 [T11];
     the one projection used by the integrators, the output samples and model assembly.
 
+    The same arithmetic as :func:`project_positions` followed by :func:`project_velocities`,
+    except that the velocity projection re-uses Φ_q, Φ_t of the last position iterate when that
+    iterate converged (they depend on (q, t) only) and nothing is allocated per correction [T191].
+
     Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
     m = P.n_rows
     if m == 0:
@@ -234,12 +238,47 @@ def project(t, y, P, tol):
     n = y.shape[0] // 2
     q = y[:n]
     qd = y[n:]
-    # np.int64: a literal 6 would compile a second specialisation next to model assembly's int64
-    res = project_positions(t, q, qd, P.minv, P.cint, P.creal, m, tol, np.int64(6))
-    if res < 0.0:
+    minv, cint, creal = P.minv, P.cint, P.creal
+    Phi = np.empty(m)
+    J = np.empty((m, n))
+    Phit = np.empty(m)
+    gam = np.empty(m)
+    S = np.empty((m, m))
+    x = np.empty(m)
+    res = 0.0
+    fresh = False  # Φ_q, Φ_t evaluated at the current q
+    for _ in range(6):
+        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        res = 0.0
+        for r in range(m):
+            res = max(res, abs(Phi[r]))
+        if res <= tol:
+            fresh = True
+            break
+        _schur_into(S, J, minv, m, n)
+        x[:] = Phi
+        if not cholesky_solve(S, x):
+            return -1.0
+        for c in range(n):
+            s = 0.0
+            for r in range(m):
+                s += J[r, c] * x[r]
+            q[c] -= minv[c] * s
+    if not fresh:  # six corrections without convergence: Φ_q at the last corrected q
+        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+    for r in range(m):
+        s = Phit[r]
+        for c in range(n):
+            s += J[r, c] * qd[c]
+        x[r] = s
+    _schur_into(S, J, minv, m, n)
+    if not cholesky_solve(S, x):
         return -1.0
-    if not project_velocities(t, q, qd, P.minv, P.cint, P.creal, m):
-        return -1.0
+    for c in range(n):
+        s = 0.0
+        for r in range(m):
+            s += J[r, c] * x[r]
+        qd[c] -= minv[c] * s
     return res
 
 

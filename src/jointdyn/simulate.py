@@ -6,7 +6,7 @@ import math
 import time
 import warnings
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
@@ -314,7 +314,7 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
             "jacobians": int(stats[3]),
         },
         wall_time=wall,
-        config=asdict(config) | {"baumgarte": a, "solver": solver},
+        config={f.name: getattr(config, f.name) for f in fields(config)} | {"baumgarte": a, "solver": solver},
         status=int(status),
     )
     if status == INTERRUPTED:
