@@ -108,7 +108,8 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
     n = q.shape[0]
     Q = ws[:n]
     Q[:] = q0_force
-    eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
+    if fint.shape[0] > 0:  # the call alone costs ≈ 0.13 µs, 12 % of an element-free RHS [T192]
+        eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
     if m > 0:
         o = n
         Phi = ws[o : o + m]
@@ -367,7 +368,8 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
         drift[1] = v
     # accelerations at the final (q, q̇): the same arithmetic as :func:`accelerations` [T10]
     Q[:] = P.q0_force
-    eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout)
+    if P.fint.shape[0] > 0:  # no call without elements [T192]
+        eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout)
     if m > 0:
         a = P.stab[0]
         if a > 0.0:
