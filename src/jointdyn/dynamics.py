@@ -104,6 +104,13 @@ def _schur(J, minv, m, n):
 def accelerations(t, q, qd, mem, P, qdd, lam, eout):
     """Solve the equations of motion for q̈ and λ at (t, q, q̇) [T10]; fill element outputs.
     Returns OK, SINGULAR or NONFINITE."""
+    return _accelerations(t, q, qd, mem, P, qdd, lam, eout)
+
+
+@njit(cache=True, inline="always")
+def _accelerations(t, q, qd, mem, P, qdd, lam, eout):
+    """:func:`accelerations`, inlined into :func:`rhs` (a call with the packed system and the
+    workspace views as arguments cost ≈ 0.19 µs of a 1.16 µs RHS [T192])."""
     minv, q0_force, cint, creal, fint, freal, tables, m, stab, ws = P
     n = q.shape[0]
     Q = ws[:n]
@@ -162,7 +169,7 @@ def rhs(t, y, mem, P, ydot):
     eout = ws[o : o + nf * NOUT].reshape((nf, NOUT))
     qdd = ydot[n:]
     ydot[:n] = y[n:]
-    return accelerations(t, y[:n], y[n:], mem, P, qdd, lam, eout)
+    return _accelerations(t, y[:n], y[n:], mem, P, qdd, lam, eout)
 
 
 @njit(cache=True)
@@ -306,7 +313,7 @@ def constraint_residuals(t, y, P):
     return p, v
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam, eout, drift):
     """One output sample (see :func:`outputs`), in place; scratch Phi, J, Phit, gam, S (m rows), Q (n).
 
