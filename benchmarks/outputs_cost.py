@@ -122,7 +122,12 @@ def main(argv=None):
         f"{t_f * 1e6:.2f} µs: floor of a sample needing one correction 1 + (2C + F)/RHS = "
         f"{1 + (2 * t_c + t_f) / t_rhs:.2f} RHS-equivalents"
     )
-    return {"rhs_equivalents": t_out / t_rhs, "us_per_sample": t_out * 1e6, "rhs_us": t_rhs * 1e6}
+    return {
+        "rhs_equivalents": t_out / t_rhs,
+        "us_per_sample": t_out * 1e6,
+        "rhs_us": t_rhs * 1e6,
+        "floor_rhs_equivalents": 1 + (2 * t_c + t_f) / t_rhs,
+    }
 
 
 if __name__ == "__main__":
