@@ -282,3 +282,22 @@ def test_simulate_with_the_exact_jacobian():
         assert np.abs(post.driving_moment(res) - post.driving_moment(ref)).max() < 1e-4 * peak
         per_step[jac] = res.stats["rhs_evaluations"] / res.stats["accepted_steps"]
     assert per_step["exact"] < per_step["finite-differences"] / 3
+
+
+def test_scratch_array_of_the_integrators_gives_the_same_jacobian():
+    """``system_jacobian_into`` (the integrators' call, scratch kept between steps) returns the
+    same bits as ``system_jacobian`` (fresh scratch), also with a stale scratch full of NaN and
+    with one too short (then it makes its own); same arithmetic, so equality is exact."""
+    from jointdyn.jacobian import jacobian_work_size, system_jacobian_into
+
+    system = slider_crank("alshaer2005").compile()
+    P = system.packed(0.0)
+    nn = system.y0.shape[0]
+    size = jacobian_work_size(system.n, system.n_rows, system.fint.shape[0])
+    for t, y, mem in states(system, 4, np.random.default_rng(3), REV):
+        Jm, ft = np.empty((nn, nn)), np.empty(nn)
+        assert system_jacobian(t, y, y, mem, P, Jm, ft, np.empty(nn), np.empty(nn)) == 0
+        for jw in (np.full(size, np.nan), np.empty(3)):
+            J2, ft2 = np.full((nn, nn), np.nan), np.full(nn, np.nan)
+            assert system_jacobian_into(t, y, mem, P, J2, ft2, jw) == 0
+            assert np.array_equal(J2, Jm) and np.array_equal(ft2, ft)

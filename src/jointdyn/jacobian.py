@@ -33,21 +33,23 @@ from .layout import BODY_I, BODY_J, ETA_I, ETA_J, TYPE, XI_I, XI_J
 
 
 @njit(cache=True)
+def _coord(a, bi, bj):
+    """Global coordinate of local index a ∈ 0..5 over (q_i, q_j); −1 for the ground."""
+    b = bi if a < 3 else bj
+    return 3 * b + a % 3 if b >= 0 else -1
+
+
+@njit(cache=True)
 def _add_row(Hs, gq, row, bi, bj, lam_r, qdd, qd, Hlam, Dacc, Dvel, Gq, Gqd):
     """Accumulate one constraint row with local Hessian Hs (6×6 over (q_i, q_j)) and ∂γ/∂q_local
     gq (6): Φ_qᵀλ, Φ_q q̈, Φ_q q̇ derivatives and ∂γ/∂q̇ = −2 Hs q̇ [T102]."""
-    idx = np.empty(6, dtype=np.int64)
-    for a in range(2):
-        b = bi if a == 0 else bj
-        for s in range(3):
-            idx[3 * a + s] = 3 * b + s if b >= 0 else -1
     for a in range(6):
-        ia = idx[a]
+        ia = _coord(a, bi, bj)
         if ia < 0:
             continue
         Gq[row, ia] += gq[a]
         for b in range(6):
-            ib = idx[b]
+            ib = _coord(b, bi, bj)
             if ib < 0 or Hs[a, b] == 0.0:
                 continue
             Hlam[ia, ib] += lam_r * Hs[a, b]
@@ -57,18 +59,17 @@ def _add_row(Hs, gq, row, bi, bj, lam_r, qdd, qd, Hlam, Dacc, Dvel, Gq, Gqd):
 
 
 @njit(cache=True)
-def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq, Gqd, gt):
+def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq, Gqd, gt, Hs, gq):
     """Second-order constraint terms at (q, q̇) (arrays zeroed here) [T102, T103]:
     Hlam = ∂(Φ_qᵀλ)/∂q (n×n), Dacc = ∂(Φ_q q̈)/∂q, Dvel = ∂(Φ_q q̇)/∂q, Gq = ∂γ/∂q,
-    Gqd = ∂γ/∂q̇ (m×n), gt = −Φ_tt (m) for the drivers (∂Φ_t/∂t = −α)."""
+    Gqd = ∂γ/∂q̇ (m×n), gt = −Φ_tt (m) for the drivers (∂Φ_t/∂t = −α); Hs (6×6), gq (6):
+    scratch."""
     Hlam[:, :] = 0.0
     Dacc[:, :] = 0.0
     Dvel[:, :] = 0.0
     Gq[:, :] = 0.0
     Gqd[:, :] = 0.0
     gt[:] = 0.0
-    Hs = np.zeros((6, 6))
-    gq = np.zeros(6)
     for k in range(cint.shape[0]):
         typ = cint[k, TYPE]
         bi = cint[k, BODY_I]
@@ -123,56 +124,105 @@ def constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq
 
 
 @njit(cache=True)
+def jacobian_work_size(n, m, nf):
+    """Length of the float scratch array of :func:`system_jacobian_into` (n coordinates, m
+    constraint rows, nf force elements)."""
+    tail = 4 * m + 5 * m * n + 2 * m * (2 * n + 1) + m * m + 42  # constraint terms, Hs, gq
+    return 4 * n + max(m, 1) + nf * NOUT + 3 * n * n + n * (2 * n + 1) + tail
+
+
+@njit(cache=True)
 def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
     """Exact Jm = ∂f/∂y (2n×2n) and ft = ∂f/∂t at (t, y) [T101–T104]; same signature and meaning
-    as ``integrators.rodas4.jacobian`` (f0, work, fw are unused/scratch). Costs one force
+    as ``integrators.rodas4.jacobian`` (f0, work, fw are unused). Allocates its scratch; the
+    integrators call :func:`system_jacobian_into` with a scratch array they keep. Returns a status
+    (0 = ok)."""
+    n = y.shape[0] // 2
+    return system_jacobian_into(
+        t, y, mem, P, Jm, ft, np.empty(jacobian_work_size(n, P.n_rows, P.fint.shape[0]))
+    )
+
+
+@njit(cache=True)
+def system_jacobian_into(t, y, mem, P, Jm, ft, jw):
+    """:func:`system_jacobian` with the scratch array ``jw`` (length ≥
+    :func:`jacobian_work_size`; a shorter one is replaced by a new array). Costs one force
     evaluation (for λ, q̈) plus the element Jacobians. Returns a status (0 = ok)."""
     minv, cint, creal, fint, freal, tables = P.minv, P.cint, P.creal, P.fint, P.freal, P.tables
     m = P.n_rows
     stab = P.stab
     nn = y.shape[0]
     n = nn // 2
-    q = y[:n].copy()
-    qd = y[n:].copy()
-    qdd = np.empty(n)
-    lam = np.zeros(max(m, 1))
-    eout = np.zeros((fint.shape[0], NOUT))
+    nf = fint.shape[0]
+    need = jacobian_work_size(n, m, nf)
+    if jw.shape[0] < need:
+        jw = np.empty(need)
+    # scratch arrays carved from jw (views, no allocation)
+    q = jw[0:n]
+    qd = jw[n : 2 * n]
+    qdd = jw[2 * n : 3 * n]
+    o = 3 * n
+    lam = jw[o : o + max(m, 1)]
+    o += max(m, 1)
+    eout = jw[o : o + nf * NOUT].reshape((nf, NOUT))
+    o += nf * NOUT
+    dQdq = jw[o : o + n * n].reshape((n, n))
+    o += n * n
+    dQdqd = jw[o : o + n * n].reshape((n, n))
+    o += n * n
+    Hlam = jw[o : o + n * n].reshape((n, n))
+    o += n * n
+    dQdt = jw[o : o + n]
+    o += n
+    G = jw[o : o + n * (nn + 1)].reshape((n, nn + 1))
+    o += n * (nn + 1)
+    for i in range(n):
+        q[i] = y[i]
+        qd[i] = y[n + i]
+    lam[:] = 0.0
     status = accelerations(t, q, qd, mem, P, qdd, lam, eout)
     if status != 0:
         return status
-    dQdq = np.empty((n, n))
-    dQdqd = np.empty((n, n))
-    dQdt = np.empty(n)
     force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt)
     # G = [∂Q/∂q + ∂(Φ_qᵀλ)/∂q, ∂Q/∂q̇, ∂Q/∂t]  (n × (2n+1))
-    G = np.zeros((n, nn + 1))
-    G[:, :n] = dQdq
-    G[:, n:nn] = dQdqd
-    G[:, nn] = dQdt
+    for i in range(n):
+        for j in range(n):
+            G[i, j] = dQdq[i, j]
+            G[i, n + j] = dQdqd[i, j]
+        G[i, nn] = dQdt[i]
     if m > 0:
-        Phi = np.empty(m)
-        J = np.empty((m, n))
-        Phit = np.empty(m)
-        gam = np.empty(m)
+        Phi = jw[o : o + m]
+        Phit = jw[o + m : o + 2 * m]
+        gam = jw[o + 2 * m : o + 3 * m]
+        gt = jw[o + 3 * m : o + 4 * m]
+        o += 4 * m
+        J = jw[o : o + m * n].reshape((m, n))
+        Dacc = jw[o + m * n : o + 2 * m * n].reshape((m, n))
+        Dvel = jw[o + 2 * m * n : o + 3 * m * n].reshape((m, n))
+        Gq = jw[o + 3 * m * n : o + 4 * m * n].reshape((m, n))
+        Gqd = jw[o + 4 * m * n : o + 5 * m * n].reshape((m, n))
+        o += 5 * m * n
+        Hc = jw[o : o + m * (nn + 1)].reshape((m, nn + 1))
+        o += m * (nn + 1)
+        Xt = jw[o : o + m * (nn + 1)].reshape((nn + 1, m))
+        o += m * (nn + 1)
+        S = jw[o : o + m * m].reshape((m, m))
+        o += m * m
+        Hs = jw[o : o + 36].reshape((6, 6))
+        gq = jw[o + 36 : o + 42]
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
-        Hlam = np.empty((n, n))
-        Dacc = np.empty((m, n))
-        Dvel = np.empty((m, n))
-        Gq = np.empty((m, n))
-        Gqd = np.empty((m, n))
-        gt = np.empty(m)
-        constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq, Gqd, gt)
-        G[:, :n] += Hlam
+        constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq, Gqd, gt, Hs, gq)
+        for i in range(n):
+            for j in range(n):
+                G[i, j] += Hlam[i, j]
         # Hc = ∂γ̂ − ∂(Φ_q q̈)/∂q dq, γ̂ = γ − 2a(Φ_q q̇ + Φ_t) − a²Φ  [T104]
         a = stab[0]
-        Hc = np.zeros((m, nn + 1))
         for r in range(m):
             for c in range(n):
                 Hc[r, c] = Gq[r, c] - 2.0 * a * Dvel[r, c] - a * a * J[r, c] - Dacc[r, c]
                 Hc[r, n + c] = Gqd[r, c] - 2.0 * a * J[r, c]
             # ∂γ̂/∂t: γ = α is constant, −2a ∂Φ_t/∂t = 2aα, −a² ∂Φ/∂t = −a²Φ_t
             Hc[r, nn] = 2.0 * a * gt[r] - a * a * Phit[r]
-        S = np.empty((m, m))
         for i in range(m):
             for j in range(i, m):
                 s = 0.0
@@ -182,19 +232,26 @@ def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
                 S[j, i] = s
         if not cholesky_factor(S):
             return 1
-        rhs_c = np.empty(m)
-        for col in range(nn + 1):
-            for r in range(m):
-                s = Hc[r, col]
-                for c in range(n):
-                    s -= J[r, c] * minv[c] * G[c, col]
-                rhs_c[r] = s
-            cholesky_substitute(S, rhs_c)
+        # X = S⁻¹(Hc − Φ_q M⁻¹ G), stored transposed (one contiguous row per column of G); then
+        # G += Φ_qᵀ X. Rows of Φ_q touch ≤ 6 coordinates: zeros are skipped
+        # (the sums keep their order, so the result is the same to the bit).
+        for r in range(m):
+            for col in range(nn + 1):
+                Xt[col, r] = Hc[r, col]
+        for r in range(m):
             for c in range(n):
-                s = G[c, col]
-                for r in range(m):
-                    s += J[r, c] * rhs_c[r]
-                G[c, col] = s
+                jm = J[r, c] * minv[c]
+                if jm != 0.0:
+                    for col in range(nn + 1):
+                        Xt[col, r] -= jm * G[c, col]
+        for col in range(nn + 1):
+            cholesky_substitute(S, Xt[col])
+        for c in range(n):
+            for r in range(m):
+                jrc = J[r, c]
+                if jrc != 0.0:
+                    for col in range(nn + 1):
+                        G[c, col] += jrc * Xt[col, r]
     for i in range(nn):
         for j in range(nn):
             Jm[i, j] = 0.0

@@ -25,7 +25,7 @@ from numba import njit
 
 from ..dynamics import rhs
 from ..forces.elements import onset_fraction, step_limit
-from ..jacobian import system_jacobian
+from ..jacobian import jacobian_work_size, system_jacobian_into
 from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, write_dense
 from .dopri5 import attempt_dopri5
 from .radau5 import (
@@ -56,7 +56,7 @@ ATTEMPT_OK, ATTEMPT_SINGULAR, ATTEMPT_BAD, ATTEMPT_DIVERGED = 0, 1, 2, 3
 # slots of Work.ctl (floats) and Work.ictl (integers)
 T, H, H_PROP, E_PREV, H_LU = range(5)  # slots 4–11: radau5 (see radau5.py)
 IOUT, FAIL, AGE, STARTED = range(4)  # slots 4–5: radau5
-EXACT_JAC = 6  # 1: analytic jacobian.system_jacobian, 0: forward differences
+EXACT_JAC = 6  # 1: analytic jacobian.system_jacobian_into, 0: forward differences
 
 
 class Work(NamedTuple):
@@ -67,7 +67,7 @@ class Work(NamedTuple):
     f0: np.ndarray  # f(t, y)
     ctl: np.ndarray  # float loop state (slots T, H, H_PROP, E_PREV, …)
     ictl: np.ndarray  # integer loop state (slots IOUT, FAIL, AGE, …)
-    stats: np.ndarray  # [rhs evaluations, accepted, rejected, Jacobians]
+    stats: np.ndarray  # [RHS evaluations, accepted, rejected, Jacobians, LU pairs, Newton its, Newton fails]
     Y: np.ndarray  # output states (n_out, nn)
     MEM: np.ndarray  # output memory (n_out, nf, NMEM)
     K: np.ndarray  # stage vectors (10, nn)
@@ -83,6 +83,7 @@ class Work(NamedTuple):
     work: np.ndarray
     err: np.ndarray
     gk: np.ndarray
+    jw: np.ndarray  # scratch of the exact Jacobian (jacobian.system_jacobian_into)
 
 
 def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian: bool = False) -> Work:
@@ -116,7 +117,7 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
         f0=np.zeros(nn),
         ctl=ctl,
         ictl=ictl,
-        stats=np.zeros(4, dtype=np.int64),
+        stats=np.zeros(7, dtype=np.int64),
         Y=Y,
         MEM=MEM,
         K=np.zeros((10, nn)),
@@ -132,6 +133,8 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
         work=np.zeros(nn),
         err=np.zeros(nn),
         gk=np.zeros(nn),
+        # m ≤ n constraint rows for a non-singular system (a longer scratch is made if needed)
+        jw=np.zeros(jacobian_work_size(nn // 2, nn // 2, mem0.shape[0]) if exact_jacobian else 1),
     )
 
 
@@ -200,7 +203,7 @@ def _entry(METHOD: int, EXACT: int):
                 break
             if METHOD != DOPRI5 and ictl[AGE] >= reuse:  # (dopri5: REUSE = 0, no Jacobian)
                 if EXACT == 1:
-                    bad = system_jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
+                    bad = system_jacobian_into(t, y, mem, P, w.Jm, w.ft, w.jw)
                     stats[0] += 1
                 else:
                     bad = jacobian(t, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
@@ -237,6 +240,7 @@ def _entry(METHOD: int, EXACT: int):
                 continue
             if res == ATTEMPT_DIVERGED:  # radau5: Newton failed; renew a Jacobian that is not fresh
                 stats[2] += 1
+                stats[6] += 1
                 h *= ctl[HHFAC]
                 ictl[4] = 1  # radau5.REJECTED
                 if ictl[AGE] > 0:

@@ -97,6 +97,7 @@ def attempt_radau5(t, h, P, w, rtol, atol):
     for i in range(nn):
         scal[i] = atol + rtol * abs(y[i])
     if ctl[H_LU] != h:
+        w.stats[4] += 1
         if not _factor(h, w):
             ctl[H_LU] = -1.0
             return 1, np.inf
@@ -149,6 +150,7 @@ def attempt_radau5(t, h, P, w, rtol, atol):
         if bad != 0:
             return 2, np.inf
         newt += 1
+        w.stats[5] += 1
         dyno = 0.0
         for i in range(nn):
             g1 = TI11 * a1[i] + TI12 * a2[i] + TI13 * a3[i] - F1[i] * fac1
