@@ -74,8 +74,10 @@ class Work(NamedTuple):
     Jm: np.ndarray  # ∂f/∂y
     W: np.ndarray  # iteration matrix (real, LU)
     piv: np.ndarray
-    W2: np.ndarray  # radau5: the complex iteration matrix (nn, nn), complex128 (LU)
+    W1: np.ndarray  # radau5: the real iteration matrix, reduced to (nn/2, nn/2) (LU) [T181]
+    W2: np.ndarray  # radau5: the complex iteration matrix (nn/2, nn/2), complex128 (LU)
     piv2: np.ndarray
+    cz: np.ndarray  # radau5: complex stage right-hand side (nn)
     ft: np.ndarray  # ∂f/∂t
     yt: np.ndarray
     y1: np.ndarray
@@ -99,7 +101,7 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
         iout += 1
     Y[:iout] = y0
     MEM[:iout] = mem0
-    n2 = nn if method == RADAU5 else 1
+    n2 = nn // 2 if method == RADAU5 else 1
     ctl = np.zeros(12)
     ctl[T] = t0
     ctl[H] = h0 if h0 > 0 else 1e-6 * max(1.0, abs(t_out[-1] - t0))
@@ -124,8 +126,10 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
         Jm=np.zeros((nn, nn)),
         W=np.zeros((nn, nn)),
         piv=np.zeros(nn, dtype=np.int64),
+        W1=np.zeros((n2, n2)),
         W2=np.zeros((n2, n2), dtype=np.complex128),
         piv2=np.zeros(n2, dtype=np.int64),
+        cz=np.zeros(2 * n2, dtype=np.complex128),
         ft=np.zeros(nn),
         yt=np.zeros(nn),
         y1=np.zeros(nn),

@@ -71,19 +71,42 @@ def tolerances(rtol, atol):
 
 @njit(cache=True)
 def _factor(h, w):
-    """Real E1 = (U1/h) I − J and complex E2 = ((α + iβ)/h) I − J (n×n complex: half the
-    flops of the equivalent real 2n×2n block, [T114])."""
-    Jm, W, W2 = w.Jm, w.W, w.W2
-    nn = Jm.shape[0]
+    """LU of the two iteration matrices in the reduced (n×n, n = nn/2) form [T181]: with
+    J = [[0, I], [A, B]] (f = [q̇, q̈]), σI − J is solved through σI − B − A/σ, for the real
+    σ = γ̂/h (W1) and the complex σ = (α + iβ)/h (W2) — RADAU5's second-order structure (its M1
+    option); an 8th of the LU flops of the nn×nn form."""
+    Jm, W1, W2 = w.Jm, w.W1, w.W2
+    n = W1.shape[0]
     fac1 = U1 / h
-    shift = complex(ALPH / h, BETA / h)
-    for i in range(nn):
-        for j in range(nn):
-            W[i, j] = -Jm[i, j]
-            W2[i, j] = -Jm[i, j]
-        W[i, i] += fac1
-        W2[i, i] += shift
-    return lu_factor(W, w.piv) and lu_factor(W2, w.piv2)
+    isig1 = 1.0 / fac1
+    sig = complex(ALPH / h, BETA / h)
+    isig = 1.0 / sig
+    for i in range(n):
+        for j in range(n):
+            a = Jm[n + i, j]
+            b = Jm[n + i, n + j]
+            W1[i, j] = -b - a * isig1
+            W2[i, j] = -b - a * isig
+        W1[i, i] += fac1
+        W2[i, i] += sig
+    return lu_factor(W1, w.piv) and lu_factor(W2, w.piv2)
+
+
+@njit(cache=True)
+def _solve(Jm, W, piv, sig, r):
+    """(σI − J) z = r in place (r → z, length nn, real or complex) with the LU of
+    σI − B − A/σ [T181]: σx − v = r₁, −Ax + (σ − B)v = r₂ ⇒ (σ − B − A/σ)v = r₂ + A r₁/σ,
+    x = (r₁ + v)/σ."""
+    n = W.shape[0]
+    isig = 1.0 / sig
+    for i in range(n):
+        s = 0.0 * r[0]
+        for j in range(n):
+            s += Jm[n + i, j] * r[j]
+        r[n + i] += s * isig
+    lu_solve(W, piv, r[n:])
+    for i in range(n):
+        r[i] = (r[i] + r[n + i]) * isig
 
 
 @njit(cache=True)
@@ -126,7 +149,8 @@ def attempt_radau5(t, h, P, w, rtol, atol):
             Z1[i] = Z2[i] = Z3[i] = F1[i] = F2[i] = F3[i] = 0.0
     yt, fw = w.yt, w.fw
     a1, a2, a3 = w.work, w.gk, w.ft  # scratch (ft is not used by radau5)
-    r2 = np.empty(nn, dtype=np.complex128)
+    r2 = w.cz
+    sig2 = complex(alphn, betan)
     faccon = max(ctl[FACCON], UROUND) ** 0.8  # RADAU5: at the start of every Newton loop
     theta = THET  # RADAU5: a step that converges in one iteration keeps the Jacobian
     dynold = 1.0
@@ -158,8 +182,8 @@ def attempt_radau5(t, h, P, w, rtol, atol):
             g3 = TI31 * a1[i] + TI32 * a2[i] + TI33 * a3[i] - F3[i] * alphn - F2[i] * betan
             Z1[i] = g1
             r2[i] = complex(g2, g3)
-        lu_solve(w.W, w.piv, Z1)
-        lu_solve(w.W2, w.piv2, r2)
+        _solve(w.Jm, w.W1, w.piv, fac1, Z1)
+        _solve(w.Jm, w.W2, w.piv2, sig2, r2)
         for i in range(nn):
             Z2[i] = r2[i].real
             Z3[i] = r2[i].imag
@@ -204,7 +228,7 @@ def attempt_radau5(t, h, P, w, rtol, atol):
         a2[i] = hee1 * Z1[i] + hee2 * Z2[i] + hee3 * Z3[i]
         err[i] = a2[i] + w.f0[i]
         y1[i] = y[i] + Z3[i]
-    lu_solve(w.W, w.piv, err)
+    _solve(w.Jm, w.W1, w.piv, fac1, err)
     en = _rms(err, scal)
     if en >= 1.0 and (w.stats[1] == 0 or ictl[REJECTED] == 1):
         for i in range(nn):
@@ -214,7 +238,7 @@ def attempt_radau5(t, h, P, w, rtol, atol):
         w.stats[0] += 1
         for i in range(nn):
             err[i] = fw[i] + a2[i]
-        lu_solve(w.W, w.piv, err)
+        _solve(w.Jm, w.W1, w.piv, fac1, err)
         en = _rms(err, scal)
     return 0, max(en, 1e-10)
 
