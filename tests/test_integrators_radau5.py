@@ -72,3 +72,33 @@ def test_radau5_slices_equal_one_call(joint):
     one = simulate(system, cfg, step_budget=10**12)
     many = simulate(system, cfg, step_budget=5)
     assert np.array_equal(one.y, many.y) and np.array_equal(one.mem, many.mem) and one.stats == many.stats
+
+
+@pytest.mark.parametrize("sigma", [3.7e4, complex(2.9e4, 1.6e4), 0.8])
+def test_reduced_solve_equals_the_full_system(sigma):
+    """The iteration matrices are factorised in the reduced form σI − B − A/σ of a second-order
+    system [T181]; the solution of (σI − J) z = r must equal numpy's dense solve of the full
+    nn×nn system, J = [[0, I], [A, B]] with random A, B of a film's magnitudes (σ as γ̂/h and
+    (α + iβ)/h at h ≈ 1e-4 s, and a small σ where A/σ dominates)."""
+    from jointdyn.integrators.radau5 import _solve
+    from jointdyn.integrators.rodas4 import lu_factor
+
+    rng = np.random.default_rng(7)
+    n = 9
+    J = np.zeros((2 * n, 2 * n))
+    J[:n, n:] = np.eye(n)
+    J[n:, :n] = rng.normal(scale=1e8, size=(n, n))  # ∂q̈/∂q: film stiffness/mass [1/s²]
+    J[n:, n:] = rng.normal(scale=1e4, size=(n, n))  # ∂q̈/∂q̇: film damping/mass [1/s]
+    dt = np.complex128 if isinstance(sigma, complex) else np.float64
+    W = (sigma * np.eye(n) - J[n:, n:] - J[n:, :n] / sigma).astype(dt)
+    piv = np.zeros(n, dtype=np.int64)
+    assert lu_factor(W, piv)
+    r = (rng.normal(size=2 * n) + (1j * rng.normal(size=2 * n) if dt is np.complex128 else 0)).astype(dt)
+    z = r.copy()
+    _solve(J, W, piv, sigma, z)
+    ref = np.linalg.solve(sigma * np.eye(2 * n) - J, r)
+    # forward error of a backward-stable solve ≤ cond · u: cond(σI − J) ≤ 4.9e8 for these three
+    # matrices (numpy.linalg.cond), u = 1.1e-16, so each solve is within 5.4e-8 and the two agree to
+    # 1.1e-7 (measured: ≤ 2.2e-15)
+    cond = np.linalg.cond(sigma * np.eye(2 * n) - J)
+    assert np.linalg.norm(z - ref) <= 2.0 * cond * 1.12e-16 * np.linalg.norm(ref)
