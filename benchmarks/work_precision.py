@@ -29,6 +29,8 @@ from numba import njit
 from jointdyn import post
 from jointdyn.dynamics import rhs
 from jointdyn.errors import SimulationError
+from jointdyn.integrators.driver import RADAU5, new_work
+from jointdyn.integrators.radau5 import ALPH, BETA, U1, _factor, _solve
 from jointdyn.jacobian import system_jacobian
 from jointdyn.models.slider_crank import SPEED, slider_crank
 from jointdyn.simulate import SimConfig, simulate
@@ -78,15 +80,40 @@ def _loop(P, y, mem, n, jac):
     return f[0] + Jm[0, 0]
 
 
+@njit(cache=True)
+def _lu_loop(w, h, n, solve):
+    """n LU pairs of radau5's iteration matrices at step h, or n Newton solves (real + complex)."""
+    s = 0.0
+    for _ in range(n):
+        if solve:
+            _solve(w.Jm, w.W1, w.piv, U1 / h, w.work)
+            _solve(w.Jm, w.W2, w.piv2, complex(ALPH / h, BETA / h), w.cz)
+            s += w.work[0]
+        else:
+            _factor(h, w)
+            s += w.W1[0, 0]
+    return s
+
+
 def _costs(P, y, mem, n):
-    """(RHS evaluation, exact system Jacobian) wall time [s] at (y, mem), mean of n calls."""
+    """(RHS evaluation, exact system Jacobian, radau5 LU pair, radau5 Newton solves) wall time [s]
+    at (y, mem), mean of n calls (the LU at h = 1e-5 s)."""
     out = []
     for jac in (False, True):
         _loop(P, y, mem, 10, jac)
         t0 = time.perf_counter()
         _loop(P, y, mem, n, jac)
         out.append((time.perf_counter() - t0) / n)
-    return out[0], out[1]
+    w = new_work(RADAU5, y, mem, 0.0, np.array([0.0, 1.0]), 1e-5, True)
+    system_jacobian(0.0, y, w.f0, mem, P, w.Jm, w.ft, w.work, w.fw)
+    w.work[:] = 1.0
+    w.cz[:] = 1.0
+    for solve in (False, True):
+        _lu_loop(w, 1e-5, 10, solve)
+        t0 = time.perf_counter()
+        _lu_loop(w, 1e-5, n, solve)
+        out.append((time.perf_counter() - t0) / n)
+    return tuple(out)
 
 
 def reference(system):
@@ -170,7 +197,7 @@ def main(argv=None):
         Mr, ref_err = reference(system)
         mid = simulate(system, _config("radau5", 1e-8))  # a state inside the run (e ≠ 0)
         k = len(mid.t) // 2
-        c_rhs, c_jac = _costs(system.packed(0.0), mid.y[k].copy(), mid.mem[k].copy(), 20_000)
+        c_rhs, c_jac, c_lu, c_sol = _costs(system.packed(0.0), mid.y[k].copy(), mid.mem[k].copy(), 20_000)
         rows = []
         for solver in a.solvers.split(","):
             for rtol in ladder[solver]:
@@ -179,7 +206,8 @@ def main(argv=None):
         print(
             f"\nc = {c:g} mm (reference rodas4 rtol 1e-11; radau5 rtol 1e-12 differs by {ref_err:.1e}); "
             f"one RHS {c_rhs * 1e6:.2f} µs, one exact Jacobian {c_jac * 1e6:.2f} µs "
-            f"(= {c_jac / c_rhs:.1f} RHS, counted as 1 in `rhs`)"
+            f"(= {c_jac / c_rhs:.1f} RHS, counted as 1 in `rhs`); radau5: LU pair {c_lu * 1e6:.2f} µs, "
+            f"Newton solves {c_sol * 1e6:.2f} µs per iteration"
         )
         cols = ["solver", "rtol", "wall_s", "rhs", "accepted", "rejected", "jacobians", "error", "guard"]
         print(_table(rows, cols))
@@ -196,7 +224,7 @@ def main(argv=None):
         print(f"\nwall time at equal accuracy, c = {c:g} mm (interpolated; nan: not reached on the ladder)")
         print(_table(eq, list(eq[0])))
         result[c] = {"rows": rows, "equal_accuracy": eq, "reference_error": ref_err}
-        result[c] |= {"rhs_s": c_rhs, "jac_s": c_jac}
+        result[c] |= {"rhs_s": c_rhs, "jac_s": c_jac, "lu_s": c_lu, "solve_s": c_sol}
     return result
 
 
