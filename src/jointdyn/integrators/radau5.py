@@ -1,9 +1,9 @@
 """Compiled Radau IIA of order 5 (3 stages, L-stable, stiffly accurate) [T113].
 
 Hairer & Wanner, *Solving ODEs II* (1996), §IV.8, and their code RADAU5: the collocation
-system is solved by simplified Newton in transformed variables (one real n×n and one complex
-n×n system per iteration), started from the
-collocation polynomial of the previous step; the Jacobian is kept while the Newton contraction
+system is solved by simplified Newton in transformed variables (one real and one complex
+system per iteration, both reduced to half the state dimension for y = [q, q̇], [T181]), started
+from the collocation polynomial of the previous step; the Jacobian is kept while the Newton contraction
 θ stays ≤ 0.001 and the LU while h does not change; embedded error estimate (E1 solve of
 γ₀⁻¹-weighted stage combination, refined after a rejection); Gustafsson's predictive step-size
 controller; collocation dense output. The Jacobian comes from :func:`system_jacobian` (one call,
