@@ -147,7 +147,9 @@ def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
 def system_jacobian_into(t, y, mem, P, Jm, ft, jw):
     """:func:`system_jacobian` with the scratch array ``jw`` (length ≥
     :func:`jacobian_work_size`; a shorter one is replaced by a new array). Costs one force
-    evaluation (for λ, q̈) plus the element Jacobians. Returns a status (0 = ok)."""
+    evaluation (for λ, q̈) plus the element Jacobians; on return jw[2n:3n] holds q̈(t, y), the
+    same numbers as ``dynamics.rhs`` (the integrators use it as f(t, y)). Returns a status
+    (0 = ok)."""
     minv, cint, creal, fint, freal, tables = P.minv, P.cint, P.creal, P.fint, P.freal, P.tables
     m = P.n_rows
     stab = P.stab

@@ -195,6 +195,7 @@ def _entry(METHOD: int, EXACT: int):
         t_end = t_out[-1]
         hmin = 1e-14 * max(1.0, abs(t_end))
         reuse = REUSE_EXACT[METHOD] if EXACT == 1 else REUSE[METHOD]
+        jw_need = jacobian_work_size(n, P.n_rows, P.fint.shape[0])  # radau5: q̈ read from w.jw
         attempts = 0
         status = OK
         while t < t_end:
@@ -300,7 +301,7 @@ def _entry(METHOD: int, EXACT: int):
             if METHOD == DOPRI5 and not (do_project and P.n_rows > 0):
                 w.K[0, :] = w.K[6]  # first-same-as-last
                 w.f0[:] = w.K[6]
-            else:
+            elif not (METHOD == RADAU5 and EXACT == 1):  # (radau5, exact: f0 after its controller)
                 if rhs(t, y, mem, P, w.f0) != 0:
                     status = RHS_FAILED
                     break
@@ -319,6 +320,25 @@ def _entry(METHOD: int, EXACT: int):
                 fac = 0.9 * e_now ** (-0.7 / 3.0) * ctl[E_PREV] ** (0.4 / 3.0)
                 ctl[E_PREV] = e_now
                 h = max(h, h_prop) * min(3.0, max(0.2, fac))
+            if METHOD == RADAU5 and EXACT == 1:
+                # a Jacobian due at the next step is taken now: its accelerations are f(t, y), so
+                # f0 costs no evaluation of its own (same arithmetic as rhs) [T185]
+                if ictl[AGE] >= reuse and t < t_end and w.jw.shape[0] >= jw_need:
+                    if system_jacobian_into(t, y, mem, P, w.Jm, w.ft, w.jw) != 0:
+                        status = RHS_FAILED
+                        break
+                    for i in range(n):
+                        w.f0[i] = y[n + i]
+                        w.f0[n + i] = w.jw[2 * n + i]  # q̈ of the Jacobian's accelerations
+                    stats[0] += 1
+                    stats[3] += 1
+                    ictl[AGE] = 0
+                    ctl[H_LU] = -1.0
+                else:
+                    if rhs(t, y, mem, P, w.f0) != 0:
+                        status = RHS_FAILED
+                        break
+                    stats[0] += 1
         if status == OK and iout == nout:
             w.Y[nout - 1] = y
             w.MEM[nout - 1] = mem
