@@ -301,3 +301,21 @@ def test_scratch_array_of_the_integrators_gives_the_same_jacobian():
             J2, ft2 = np.full((nn, nn), np.nan), np.full(nn, np.nan)
             assert system_jacobian_into(t, y, mem, P, J2, ft2, jw) == 0
             assert np.array_equal(J2, Jm) and np.array_equal(ft2, ft)
+
+
+@pytest.mark.parametrize("joint", ["alshaer2005", "dry", "perfect"])
+def test_jacobian_accelerations_are_the_right_hand_side(joint):
+    """radau5 reads f(t, y) from the Jacobian's scratch when it takes a Jacobian after a step
+    [T185]: q̈ there must be dynamics.rhs's, bit for bit (same arithmetic, so equality is exact)."""
+    from jointdyn.jacobian import jacobian_work_size, system_jacobian_into
+
+    system = slider_crank(joint).compile()
+    P = system.packed(0.0)
+    nn = system.y0.shape[0]
+    n = nn // 2
+    jw = np.empty(jacobian_work_size(n, system.n_rows, system.fint.shape[0]))
+    for t, y, mem in states(system, 4, np.random.default_rng(5), REV):
+        f = np.empty(nn)
+        assert rhs(t, y, mem, P, f) == 0
+        assert system_jacobian_into(t, y, mem, P, np.empty((nn, nn)), np.empty(nn), jw) == 0
+        assert np.array_equal(jw[2 * n : 3 * n], f[n:])
