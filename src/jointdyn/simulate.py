@@ -312,7 +312,12 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
             "accepted_steps": int(stats[1]),
             "rejected_steps": int(stats[2]),
             "jacobians": int(stats[3]),
-        },
+        }
+        | (  # radau5 counts its factorisations and Newton iterations (driver Work.stats 4–6)
+            {"lu_pairs": int(stats[4]), "newton_iterations": int(stats[5]), "newton_failures": int(stats[6])}
+            if solver == "radau5"
+            else {}
+        ),
         wall_time=wall,
         config={f.name: getattr(config, f.name) for f in fields(config)} | {"baumgarte": a, "solver": solver},
         status=int(status),
