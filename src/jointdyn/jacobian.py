@@ -143,7 +143,7 @@ def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
     dQdq = np.empty((n, n))
     dQdqd = np.empty((n, n))
     dQdt = np.empty(n)
-    force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt)
+    force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt, P.kinds)
     # G = [∂Q/∂q + ∂(Φ_qᵀλ)/∂q, ∂Q/∂q̇, ∂Q/∂t]  (n × (2n+1))
     G = np.zeros((n, nn + 1))
     G[:, :n] = dQdq
