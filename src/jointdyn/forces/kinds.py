@@ -6,10 +6,12 @@ models and contact laws, tables, springs, torsion) for every model, a perfect jo
 
 Here the set of kinds a system contains is carried in the *type* of an argument: ``kinds`` is a
 tuple with one entry per code 0 … max code, ``1`` where the system has an element of that code
-and ``None`` where it has none (numba types it as e.g. ``Tuple(none, int64, none, …)``). A
-dispatch function made by :func:`kind_switch` is a numba ``@overload`` that generates, at typing
-time, an ``if typ == code: kernel(...)`` chain over the present codes only; the absent kinds
-are never typed, lowered or optimised. ``kinds=None`` (or omitted) means every registered kind.
+and ``None`` where it has none (numba types it as e.g. ``Tuple(none, int64, none, …)``). The
+functions made here — :func:`kind_loop` (the loop over the elements), :func:`kind_switch` (one
+element) and :func:`kind_gate` (a hook of one kind) — are numba ``@overload`` functions, inlined into
+their caller, whose code is generated at typing time: an ``if typ == code: kernel(...)`` chain
+over the present codes only. The absent kinds are never typed, lowered or optimised.
+``kinds=None`` (or omitted) means every registered kind.
 
 The compiled callers keep ``cache=True``: the kinds tuple type is part of their signature, so
 numba's on-disk cache holds one specialisation per combination of kinds (the trade-off: a model
