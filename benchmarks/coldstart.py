@@ -3,6 +3,7 @@
     python -m benchmarks.coldstart                      # perfect and alshaer2005, --revs 1
     python -m benchmarks.coldstart --joints perfect --top 25
     python -m benchmarks.coldstart --before /work/main/src   # before/after, back to back
+    python -m benchmarks.coldstart --before /work/main/src --joints perfect,alshaer2005,dry --repeat 10
 
 For every joint and every source tree (``--before`` first, then this tree) the command runs
 ``jointdyn run slider-crank --joint J --revs R --out D`` twice in fresh processes sharing one new
@@ -15,7 +16,10 @@ cold run of this tree it lists the compile time per compiled function (*self*: i
 lowering and LLVM optimisation of everything linked into it, without the nested compiles of its
 callees; *top*: wall time of a compile started from Python, callees included) from numba's event
 API (``numba:compile``), and the compile time per module. Finally the import time per top-level
-package of ``python -X importtime -c "import jointdyn.cli"``.
+package of ``python -X importtime -c "import jointdyn.cli"``. With ``--repeat N``, the warm
+``simulate()`` of the same model and settings is timed N times per tree in the cache the cold run
+filled (CPU time; the trees alternated twice), to show that specialising the compiled code on the
+model's element kinds [T175] costs no warm speed.
 """
 
 from __future__ import annotations
@@ -23,6 +27,7 @@ from __future__ import annotations
 import argparse
 import json
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -120,6 +125,33 @@ def _run(src: Path, cache: str, argv: list[str]) -> dict:
     return r
 
 
+WARM_CHILD = """
+import json, os, sys, time
+from jointdyn.models import slider_crank as sc
+from jointdyn.runs import slider_crank_config
+from jointdyn.simulate import simulate
+joint, revs, repeat = sys.argv[1], float(sys.argv[2]), int(sys.argv[3])
+system = sc.slider_crank(joint).compile()
+cfg = slider_crank_config(joint, revs)
+simulate(system, cfg)  # loads the kernels from the cache filled by the cold run
+cpu = []
+for _ in range(repeat):
+    t0 = time.process_time()
+    simulate(system, cfg)
+    cpu.append(time.process_time() - t0)
+print(json.dumps(cpu))
+"""
+
+
+def _warm_simulate(src: Path, cache: str, joint: str, revs: str, repeat: int) -> list[float]:
+    """CPU times [s] of ``repeat`` warm ``simulate`` calls (the CLI's model and settings)."""
+    env = dict(os.environ, PYTHONPATH=str(src), NUMBA_CACHE_DIR=os.path.join(cache, "numba"))
+    env["XDG_CACHE_HOME"] = cache
+    cmd = [sys.executable, "-c", WARM_CHILD, joint, revs, str(repeat)]
+    p = subprocess.run(cmd, cwd=ROOT, env=env, capture_output=True, text=True, check=True)
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
 def _compile_table(compiles, top: int) -> None:
     per = defaultdict(lambda: [0, 0.0, 0.0])
     mods = defaultdict(float)
@@ -169,19 +201,31 @@ def main(argv=None) -> None:
     ap.add_argument("--revs", default="1")
     ap.add_argument("--before", default=None, help="another src/ tree to measure first")
     ap.add_argument("--top", type=int, default=20)
+    ap.add_argument(
+        "--repeat",
+        type=int,
+        default=0,
+        help="also time N warm simulate() calls per tree (CPU; trees alternated twice), cold run's cache",
+    )
     a = ap.parse_args(argv)
     trees = ([("before", Path(a.before))] if a.before else []) + [("this", SRC)]
     rows = []
     compiles = {}
+    sim: dict = defaultdict(list)
     for joint in a.joints.split(","):
-        for label, src in trees:
-            with tempfile.TemporaryDirectory() as cache, tempfile.TemporaryDirectory() as out:
-                cli = ["run", "slider-crank", "--joint", joint, "--revs", a.revs, "--out", out]
-                cold = _run(src, cache, cli)
-                warm = _run(src, cache, [*cli[:-1], out, "--overwrite"])
-            rows.append((joint, label, cold, warm))
-            if label == "this":
-                compiles[joint] = cold["compiles"]
+        with tempfile.TemporaryDirectory() as c0, tempfile.TemporaryDirectory() as c1:
+            caches = dict(zip([label for label, _ in trees], (c0, c1), strict=False))
+            for label, src in trees:
+                with tempfile.TemporaryDirectory() as out:
+                    cli = ["run", "slider-crank", "--joint", joint, "--revs", a.revs, "--out", out]
+                    cold = _run(src, caches[label], cli)
+                    warm = _run(src, caches[label], [*cli[:-1], out, "--overwrite"])
+                rows.append((joint, label, cold, warm))
+                if label == "this":
+                    compiles[joint] = cold["compiles"]
+            for _ in range(2 if a.repeat > 0 else 0):  # interleaved: load changes on a shared machine
+                for label, src in trees:
+                    sim[joint, label] += _warm_simulate(src, caches[label], joint, a.revs, a.repeat)
     print(f"jointdyn run slider-crank --joint J --revs {a.revs} --out D (fresh processes; wall/CPU [s])")
     head = (
         f"{'joint':<12} {'tree':<6} {'cold wall':>9} {'cold cpu':>8} {'warm wall':>9} {'warm cpu':>8} "
@@ -197,6 +241,12 @@ def main(argv=None) -> None:
             f"{w['rss_import_mb']:8.0f}MB"
         )
     print("(cold/warm: ratio of CPU times; import/load: warm run's import of jointdyn.cli and cache loads)")
+    if sim:
+        print(
+            f"\nwarm simulate() of the same run, CPU [ms] (min / median of {2 * a.repeat}, trees alternated)"
+        )
+        for (joint, label), v in sim.items():
+            print(f"{joint:<12} {label:<6} {1e3 * min(v):8.2f} {1e3 * statistics.median(v):8.2f}")
     for joint, c in compiles.items():
         print(f"\n== {joint} ==", end="")
         _compile_table(c, a.top)

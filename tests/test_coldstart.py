@@ -6,9 +6,12 @@ import os
 import subprocess
 import sys
 import textwrap
+from pathlib import Path
 
+import numpy as np
 import pytest
 
+from jointdyn.forces.elements import FORCE_ELEMENTS
 from jointdyn.integrators.driver import _ENTRIES, DOPRI5, METHODS
 
 CHILD = textwrap.dedent(
@@ -54,5 +57,165 @@ def test_dopri5_run_compiles_no_stiff_method_and_is_cached(tmp_path):
     assert any(n.endswith("attempt_dopri5") for n in cold)
     stiff = ("attempt_rodas4", "attempt_ros34pw2", "attempt_radau5", "system_jacobian", "rodas4.jacobian")
     assert not [n for n in cold if n.endswith(stiff)]
+    # a model without force elements compiles no element kind and no journal hook [T175]
+    journal = (
+        "journal_element",
+        "penetration",
+        "film_force",
+        "contact_force",
+        "_journal_memory",
+        "_journal_step_limit",
+    )
+    assert not [n for n in cold if n.endswith(journal)]
     # a second process finds everything in the cache: nothing is compiled again
     assert _compiled("dopri5", str(tmp_path)) == []
+
+
+# ------------------------------------------------------------------ element kinds [T175]
+KINDS_CHILD = textwrap.dedent(
+    """
+    import json, sys
+    import numpy as np
+    from numba.core import event as ev
+    names = []
+    class L(ev.Listener):
+        def on_start(self, e):
+            pass
+        def on_end(self, e):
+            f = e.data["dispatcher"].py_func
+            names.append(f.__module__ + "." + f.__qualname__)
+    ev.register("numba:compile", L())
+    from jointdyn.forces.elements import NOUT, eval_forces, kinds_of
+    from jointdyn.forces.springs import SpringDamper
+    from jointdyn.model import Model
+    m = Model("oscillator", gravity=(0.0, 0.0))
+    m.add_ground_point("O", (0.0, 0.0))
+    m.add_body("b", 0.2, 1e-3, position=(0.11, 0.0), points={"c": (0.0, 0.0)})
+    m.add("spring", SpringDamper("ground", "O", "b", "c", stiffness=1e3, damping=1.0, free_length=0.1))
+    s = m.compile()
+    Q = np.zeros(s.n)
+    eval_forces(0.0, s.y0[:3], s.y0[3:], s.mem0, s.fint, s.freal, s.tables, Q, np.zeros((1, NOUT)),
+                kinds_of(s.fint))
+    print(json.dumps(names))
+    """
+)
+
+
+def test_kinds_tuple_marks_the_codes_present():
+    from jointdyn.forces.elements import FORCE_KERNELS, kinds_of
+    from jointdyn.forces.journal import JOURNAL
+    from jointdyn.forces.springs import SPRING_DAMPER
+
+    # every registered element type has a compiled kernel for the dispatch
+    assert {cls.code for cls in FORCE_ELEMENTS.values()} <= set(FORCE_KERNELS)
+    fint = np.zeros((3, 4), dtype=np.int64)
+    fint[:, 0] = [JOURNAL, SPRING_DAMPER, JOURNAL]
+    k = kinds_of(fint)
+    assert len(k) == max(FORCE_KERNELS) + 1
+    assert [c for c, v in enumerate(k) if v is not None] == sorted({JOURNAL, SPRING_DAMPER})
+    assert all(v is None for v in kinds_of(fint[:0]))  # no elements (a perfect joint): no kind
+    fint[0, 0] = max(FORCE_KERNELS) + 7
+    with pytest.raises(ValueError, match="no registered kernel"):
+        kinds_of(fint)
+
+
+def test_spring_model_compiles_only_the_spring_and_is_cached(tmp_path):
+    """A model with one spring–damper compiles its kernel and none of the other kinds (journal,
+    film, contact, tables, torsion); a second process loads the specialisation from the cache."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path), XDG_CACHE_HOME=str(tmp_path))
+
+    def compiled():
+        p = subprocess.run(
+            [sys.executable, "-c", KINDS_CHILD], env=env, capture_output=True, text=True, check=True
+        )
+        return json.loads(p.stdout.strip().splitlines()[-1])
+
+    cold = compiled()
+    assert any(n.endswith("elements.eval_forces") for n in cold)
+    assert any(n.endswith("springs.spring_damper") for n in cold)
+    other = (
+        "journal_element",
+        "film_force",
+        "contact_force",
+        "tabulated_force",
+        "torsion_spring",
+        "harmonic_torque",
+    )
+    assert not [n for n in cold if n.endswith(other)]
+    assert compiled() == []
+
+
+def _pair_system(element):
+    import warnings
+
+    from jointdyn.errors import PhysicsWarning
+    from jointdyn.model import Model
+
+    m = Model("pair", gravity=(0.0, 0.0))
+    m.add_body("a", 1.0, 1e-3, position=(0.0, 0.0), points={"A": (0.03, -0.01)})
+    m.add_body("b", 1.0, 1e-3, position=(0.05, -0.035), points={"B": (-0.02, 0.015)})
+    m.add("el", element)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", PhysicsWarning)
+        return m.compile(centre_imperfect=False)
+
+
+@pytest.mark.parametrize(
+    "name", sorted(__import__("jointdyn.forces.elements").forces.elements.FORCE_ELEMENTS)
+)
+def test_kind_specialisation_gives_the_same_forces_as_all_kinds(name):
+    """The dispatch over the kinds present runs the same kernel as the one over every kind: equal
+    bit for bit (the same floating-point operations in the same order)."""
+    from jointdyn.forces.elements import NOUT, eval_forces, kinds_of
+
+    s = _pair_system(FORCE_ELEMENTS[name].example())
+    rng = np.random.default_rng(3)
+    acts = False
+    for _ in range(8):
+        q = s.y0[: s.n] + rng.normal(size=s.n) * 1e-3  # ~ a clearance: dry joints in contact too
+        qd = rng.normal(size=s.n)
+        Q1, Q2 = np.zeros(s.n), np.zeros(s.n)
+        o1, o2 = np.zeros((1, NOUT)), np.zeros((1, NOUT))
+        eval_forces(0.01, q, qd, s.mem0, s.fint, s.freal, s.tables, Q1, o1)
+        eval_forces(0.01, q, qd, s.mem0, s.fint, s.freal, s.tables, Q2, o2, kinds_of(s.fint))
+        acts = acts or bool(np.any(Q1 != 0.0))
+        np.testing.assert_array_equal(Q1, Q2)
+        np.testing.assert_array_equal(o1, o2)
+    assert acts  # the element acts at some of these states: the comparison is not of zeros
+
+
+HOW_TO = Path(__file__).resolve().parents[1] / "docs" / "how-to-add-a-model.md"
+HOW_TO_RUN = textwrap.dedent(
+    """
+    import json, sys
+    sys.path.insert(0, sys.argv[2])
+    from plugin_torque import ConstantTorque  # the how-to's code block, literally, as a module
+    from jointdyn.model import Model
+    from jointdyn.simulate import SimConfig, simulate
+    m = Model("free body", gravity=(0.0, 0.0))
+    m.add_body("b", 2.0, 0.5, position=(0.0, 0.0))
+    m.add("motor", ConstantTorque("b", moment=3.0))
+    res = simulate(m.compile(), SimConfig(t_end=2.0, n_out=5, solver=sys.argv[1], rtol=1e-10, atol=1e-12))
+    print(json.dumps([res.t.tolist(), res.y[:, 2].tolist(), res.eout[:, 0, :2].tolist()]))
+    """
+)
+
+
+@pytest.mark.parametrize("solver", ["dopri5", pytest.param("radau5", marks=pytest.mark.slow)])
+def test_how_to_force_element(solver, tmp_path):
+    """The how-to's new element type, registered in a fresh process exactly as written there,
+    runs in a model: a free body (J = 0.5 kg·m²) under M = 3 N·m turns by φ = M t²/(2J). radau5
+    differentiates it by the finite-difference fallback (no exact Jacobian registered)."""
+    text = HOW_TO.read_text(encoding="utf-8")
+    section = text[text.index("## A force element type") :]
+    code = section[section.index("```python\n") + 10 : section.index("\n```\n")]
+    (tmp_path / "plugin_torque.py").write_text(code, encoding="utf-8")
+    p = subprocess.run(
+        [sys.executable, "-c", HOW_TO_RUN, solver, str(tmp_path)], capture_output=True, text=True, check=True
+    )
+    t, phi, out = (np.array(v) for v in json.loads(p.stdout.strip().splitlines()[-1]))
+    # both methods integrate a quadratic in t exactly up to rounding and the step-size control:
+    # 1e-9 relative is 10× the rtol of the run (1e-10)
+    np.testing.assert_allclose(phi, 3.0 * t**2 / (2 * 0.5), rtol=1e-9, atol=1e-12)
+    np.testing.assert_array_equal(out[:, 0], 3.0)  # output column "moment"
+    np.testing.assert_allclose(out[:, 1], 3.0 * 3.0 * t / 0.5, rtol=1e-9)  # power M·ω, ω = M t / J

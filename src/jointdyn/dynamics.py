@@ -111,12 +111,12 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
 def _accelerations(t, q, qd, mem, P, qdd, lam, eout):
     """:func:`accelerations`, inlined into :func:`rhs` (a call with the packed system and the
     workspace views as arguments cost ≈ 0.19 µs of a 1.16 µs RHS [T192])."""
-    minv, q0_force, cint, creal, fint, freal, tables, m, stab, ws = P
+    minv, q0_force, cint, creal, fint, freal, tables, m, stab, ws, kinds = P
     n = q.shape[0]
     Q = ws[:n]
     Q[:] = q0_force
     if fint.shape[0] > 0:  # the call alone costs ≈ 0.13 µs, 12 % of an element-free RHS [T192]
-        eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout)
+        eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout, kinds)
     if m > 0:
         o = n
         Phi = ws[o : o + m]
@@ -376,7 +376,7 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
     # accelerations at the final (q, q̇): the same arithmetic as :func:`accelerations` [T10]
     Q[:] = P.q0_force
     if P.fint.shape[0] > 0:  # no call without elements [T192]
-        eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout)
+        eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout, P.kinds)
     if m > 0:
         a = P.stab[0]
         if a > 0.0:

@@ -185,7 +185,7 @@ def system_jacobian_into(t, y, mem, P, Jm, ft, jw):
     status = accelerations(t, q, qd, mem, P, qdd, lam, eout)
     if status != 0:
         return status
-    force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt)
+    force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt, P.kinds)
     # G = [∂Q/∂q + ∂(Φ_qᵀλ)/∂q, ∂Q/∂q̇, ∂Q/∂t]  (n × (2n+1))
     for i in range(n):
         for j in range(n):

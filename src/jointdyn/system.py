@@ -31,6 +31,9 @@ class Packed(NamedTuple):
     """(1,) Baumgarte rate a [1/s]"""
     ws: np.ndarray
     """preallocated float workspace (``dynamics.workspace_size``)"""
+    kinds: tuple = ()
+    """the element kinds present (``forces.elements.kinds_of``): a type-level switch, so the
+    compiled kernels contain only these kinds [T175]"""
 
 
 @dataclass(frozen=True)
@@ -71,6 +74,7 @@ class System:
     def packed(self, baumgarte: float = 0.0) -> Packed:
         """The arrays handed to the compiled kernels, with a fresh workspace."""
         from .dynamics import workspace_size
+        from .forces.elements import kinds_of
 
         ws = np.zeros(workspace_size(self.n, self.n_rows, self.fint.shape[0]))
         return Packed(
@@ -84,6 +88,7 @@ class System:
             int(self.n_rows),
             np.array([float(baumgarte)]),
             ws,
+            kinds_of(self.fint),
         )
 
     def coordinate_labels(self) -> list[str]:

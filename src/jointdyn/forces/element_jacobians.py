@@ -48,6 +48,7 @@ from .journal import (
     XI_GUARD,
     journal_kinematics,
 )
+from .kinds import kind_switch
 from .simple_jacobians import (
     harmonic_torque_dt,
     spring_damper_jacobian,
@@ -189,13 +190,13 @@ def _scatter(DQ, bi, bj, dQdq, dQdqd):
 
 
 @njit(cache=True)
-def _element_q(t, q, qd, mem, fint, freal, tables, k, Qk, out):
+def _element_q(t, q, qd, mem, fint, freal, tables, k, Qk, out, kinds):
     Qk[:] = 0.0
-    eval_forces(t, q, qd, mem[k : k + 1], fint[k : k + 1], freal[k : k + 1], tables, Qk, out)
+    eval_forces(t, q, qd, mem[k : k + 1], fint[k : k + 1], freal[k : k + 1], tables, Qk, out, kinds)
 
 
 @njit(cache=True)
-def _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt):
+def _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt, kinds):
     """Central differences of element k's generalised force [T100] (the fallback)."""
     n = q.shape[0]
     Qp = np.zeros(n)
@@ -209,61 +210,113 @@ def _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt):
             h = 6.055454452393343e-06 * max(abs(base), 1e-3 if which == 0 else 1.0)  # ε^(1/3)
             if which == 0:
                 qw[col] = base + h
-                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qp, out)
+                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qp, out, kinds)
                 qw[col] = base - h
-                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qm, out)
+                _element_q(t, qw, qd, mem, fint, freal, tables, k, Qm, out, kinds)
                 qw[col] = base
                 for i in range(n):
                     dQdq[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
             else:
                 qdw[col] = base + h
-                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qp, out)
+                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qp, out, kinds)
                 qdw[col] = base - h
-                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qm, out)
+                _element_q(t, q, qdw, mem, fint, freal, tables, k, Qm, out, kinds)
                 qdw[col] = base
                 for i in range(n):
                     dQdqd[i, col] += (Qp[i] - Qm[i]) / (2.0 * h)
     h = 6.055454452393343e-06 * max(abs(t), 1e-3)
-    _element_q(t + h, q, qd, mem, fint, freal, tables, k, Qp, out)
-    _element_q(t - h, q, qd, mem, fint, freal, tables, k, Qm, out)
+    _element_q(t + h, q, qd, mem, fint, freal, tables, k, Qp, out, kinds)
+    _element_q(t - h, q, qd, mem, fint, freal, tables, k, Qm, out, kinds)
     for i in range(n):
         dQdt[i] += (Qp[i] - Qm[i]) / (2.0 * h)
 
 
+# One compiled Jacobian kernel per element code, all with the signature
+# (t, q, q̇, k, mem, fint, freal, tables, DQ, ∂Q/∂q, ∂Q/∂q̇, ∂Q/∂t) -> 0 (element k's derivatives added
+# to the global arrays) or 1 (not differentiable here: the caller uses the finite-difference
+# fallback [T100]). DQ is a zeroed (6, 12) local block for kernels that scatter with
+# :func:`_scatter`. A code without an entry is always differentiated by the fallback.
+
+
+@njit(inline="always")
+def _harmonic_torque_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt):
+    harmonic_torque_dt(t, fint[k, BODY_J], freal[k], dQdt)  # M(t) only: no q, q̇ terms [T118]
+    return 0
+
+
+@njit(inline="always")
+def _tabulated_force_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt):
+    tab = tables[fint[k, TAB_TABLE]]
+    tabulated_force_jacobian(t, q, qd, fint[k, BODY_J], fint[k], freal[k], tab, dQdq, dQdt)
+    return 0
+
+
+@njit(inline="always")
+def _torsion_spring_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt):
+    bi = fint[k, BODY_I]
+    bj = fint[k, BODY_J]
+    torsion_spring_jacobian(q, bi, bj, freal[k], DQ)
+    _scatter(DQ, bi, bj, dQdq, dQdqd)
+    return 0
+
+
+@njit(inline="always")
+def _spring_damper_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt):
+    bi = fint[k, BODY_I]
+    bj = fint[k, BODY_J]
+    if spring_damper_jacobian(q, qd, bi, bj, freal[k], DQ) != 0:
+        return 1
+    _scatter(DQ, bi, bj, dQdq, dQdqd)
+    return 0
+
+
+@njit(inline="always")
+def _journal_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt):
+    bi = fint[k, BODY_I]
+    bj = fint[k, BODY_J]
+    if journal_jacobian(q, qd, mem[k], bi, bj, fint[k], freal[k], tables, DQ) != 0:
+        return 1
+    _scatter(DQ, bi, bj, dQdq, dQdqd)
+    return 0
+
+
+JACOBIAN_KERNELS = {
+    SPRING_DAMPER: _spring_damper_jac,
+    JOURNAL: _journal_jac,
+    TABULATED_FORCE: _tabulated_force_jac,
+    TORSION_SPRING: _torsion_spring_jac,
+    HARMONIC_TORQUE: _harmonic_torque_jac,
+}
+"""element code -> compiled exact Jacobian kernel (optional: without one, finite differences)"""
+
+_element_jacobian = kind_switch(
+    "element_jacobian",
+    JACOBIAN_KERNELS,
+    ("t", "q", "qd", "k", "mem", "fint", "freal", "tables", "DQ", "dQdq", "dQdqd", "dQdt"),
+    default="1",
+)
+
+
 @njit(cache=True)
-def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt):
+def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt, kinds=None):
     """∂Q/∂q, ∂Q/∂q̇ (n, n) and ∂Q/∂t (n,) of all force elements (zeroed here; gravity is
-    constant). Returns the number of elements differentiated by the fallback [T98–T100]."""
+    constant). ``kinds`` as in :func:`~jointdyn.forces.elements.eval_forces` [T175]. Returns the
+    number of elements differentiated by the fallback [T98–T100]."""
     dQdq[:, :] = 0.0
     dQdqd[:, :] = 0.0
     dQdt[:] = 0.0
     DQ = np.empty((6, 12))
     n_fd = 0
     for k in range(fint.shape[0]):
-        typ = fint[k, TYPE]
-        bi = fint[k, BODY_I]
-        bj = fint[k, BODY_J]
         DQ[:, :] = 0.0
-        if typ == HARMONIC_TORQUE:  # M(t) only: no q, q̇ terms [T118]
-            harmonic_torque_dt(t, bj, freal[k], dQdt)
-            continue
-        if typ == TABULATED_FORCE:
-            tabulated_force_jacobian(t, q, qd, bj, fint[k], freal[k], tables[fint[k, TAB_TABLE]], dQdq, dQdt)
-            continue
-        if typ == TORSION_SPRING:
-            torsion_spring_jacobian(q, bi, bj, freal[k], DQ)
-            _scatter(DQ, bi, bj, dQdq, dQdqd)
-            continue
-        if typ == SPRING_DAMPER:
-            if spring_damper_jacobian(q, qd, bi, bj, freal[k], DQ) == 0:
-                _scatter(DQ, bi, bj, dQdq, dQdqd)
-                continue
-        elif typ == JOURNAL:
-            if journal_jacobian(q, qd, mem[k], bi, bj, fint[k], freal[k], tables, DQ) == 0:
-                _scatter(DQ, bi, bj, dQdq, dQdqd)
-                continue
-        _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt)
-        n_fd += 1
+        if (
+            _element_jacobian(
+                kinds, fint[k, TYPE], t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt
+            )
+            != 0
+        ):
+            _fd_element(t, q, qd, mem, fint, freal, tables, k, dQdq, dQdqd, dQdt, kinds)
+            n_fd += 1
     return n_fd
 
 

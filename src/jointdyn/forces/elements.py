@@ -30,6 +30,7 @@ from .journal import (
     penetration,
 )
 from .journal import NO_CONTACT as _NO_CONTACT
+from .kinds import kind_gate, kind_loop, kinds_tuple
 from .springs import SPRING_DAMPER, SpringDamper, spring_damper
 from .tabulated import TABLE as TAB_TABLE
 from .tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
@@ -58,33 +59,51 @@ NOUT = max(len(cls.OUTPUTS) for cls in FORCE_ELEMENTS.values())
 FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law (+ element index)
 
 
-@njit(cache=True)
-def eval_forces(t, q, qd, mem, fint, freal, tables, Q, out):
-    """Add all element forces to Q; fill ``out`` (nf, NOUT). Probing inadmissible states is
-    allowed and evaluated guarded (see ``journal_element``); breakdown is reported by
-    :func:`advance_memory` on accepted steps."""
-    for k in range(fint.shape[0]):
-        typ = fint[k, TYPE]
-        if typ == SPRING_DAMPER:
-            spring_damper(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k])
-        elif typ == JOURNAL:
-            journal_element(
-                q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, Q, out[k]
-            )
-        elif typ == TABULATED_FORCE:
-            tabulated_force(
-                t, q, qd, fint[k, BODY_J], fint[k], freal[k], tables[fint[k, TAB_TABLE]], Q, out[k]
-            )
-        elif typ == TORSION_SPRING:
-            torsion_spring(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k])
-        elif typ == HARMONIC_TORQUE:
-            harmonic_torque(t, qd, fint[k, BODY_J], freal[k], Q, out[k])
+# One compiled kernel per element code. A kernel with the element signature
+# (t, q, q̇, k, mem, fint, freal, tables, Q, out) is registered as itself (k: the element's row of
+# the tables mem, fint, freal, out); a kernel with a signature of its own as (kernel, its argument
+# list), written in those names and the slot constants below. A new element type registers its
+# kernel here (and its class above).
+FORCE_KERNELS = {
+    SPRING_DAMPER: (spring_damper, "q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k]"),
+    JOURNAL: (
+        journal_element,
+        "q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, Q, out[k]",
+    ),
+    TABULATED_FORCE: (
+        tabulated_force,
+        "t, q, qd, fint[k, BODY_J], fint[k], freal[k], tables[fint[k, TAB_TABLE]], Q, out[k]",
+    ),
+    TORSION_SPRING: (torsion_spring, "q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k]"),
+    HARMONIC_TORQUE: (harmonic_torque, "t, qd, fint[k, BODY_J], freal[k], Q, out[k]"),
+}
+"""element code -> compiled kernel adding element k's force to Q (or (kernel, argument list))"""
+
+_force_loop = kind_loop(
+    "force_loop",
+    FORCE_KERNELS,
+    ("t", "q", "qd", "mem", "fint", "freal", "tables", "Q", "out"),
+    {"BODY_I": BODY_I, "BODY_J": BODY_J, "TAB_TABLE": TAB_TABLE},
+)
+
+
+def kinds_of(fint: np.ndarray) -> tuple:
+    """The ``kinds`` argument of :func:`eval_forces` for an element table: 1 at each code it
+    contains, None elsewhere [T175]."""
+    return kinds_tuple(fint[:, TYPE].tolist(), tuple(FORCE_KERNELS))
 
 
 @njit(cache=True)
-def advance_memory(t, q, qd, mem, fint, freal, tables):
-    """After an accepted step: record contact onsets (δ̇⁻) and separations [T16]; stop on
-    film breakdown. Returns 0 or FILM_BREAKDOWN + element index."""
+def eval_forces(t, q, qd, mem, fint, freal, tables, Q, out, kinds=None):
+    """Add all element forces to Q; fill ``out`` (nf, NOUT). ``kinds`` (:func:`kinds_of`) selects
+    the element kinds compiled into this specialisation; None: every registered kind [T175].
+    Probing inadmissible states is allowed and evaluated guarded (see ``journal_element``);
+    breakdown is reported by :func:`advance_memory` on accepted steps."""
+    _force_loop(kinds, t, q, qd, mem, fint, freal, tables, Q, out)
+
+
+@njit(inline="always")
+def _journal_memory(t, q, qd, mem, fint, freal, tables):
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL:
             continue
@@ -103,10 +122,8 @@ def advance_memory(t, q, qd, mem, fint, freal, tables):
     return 0
 
 
-@njit(cache=True)
-def onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
-    """If a trial step ends with an unresolved contact onset (penetration above the element's
-    onset tolerance while not in contact), the fraction of the step to retry with; else 1.0."""
+@njit(inline="always")
+def _journal_onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
     frac = 1.0
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == _NO_CONTACT or mem[k, IN_CONTACT] > 0.5:
@@ -120,10 +137,8 @@ def onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
     return frac
 
 
-@njit(cache=True)
-def step_limit(q, qd, mem, fint, freal):
-    """Largest step that cannot carry a free journal through its gap at the current approach
-    speed [s]: (gap + tol)/δ̇ for elements not in contact (inf if none)."""
+@njit(inline="always")
+def _journal_step_limit(q, qd, mem, fint, freal):
     h = 1e300
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == _NO_CONTACT or mem[k, IN_CONTACT] > 0.5:
@@ -132,6 +147,40 @@ def step_limit(q, qd, mem, fint, freal):
         if dd > 0.0 and delta < 0.0:
             h = min(h, (-delta + freal[k, ONSET_TOL]) / dd)
     return h
+
+
+# The accepted-step hooks of journal elements, compiled only for a model that has one [T175].
+_memory_gate = kind_gate(
+    "memory_gate", JOURNAL, _journal_memory, ("t", "q", "qd", "mem", "fint", "freal", "tables"), "0"
+)
+_onset_gate = kind_gate(
+    "onset_gate", JOURNAL, _journal_onset_fraction, ("q0", "qd0", "q1", "qd1", "mem", "fint", "freal"), "1.0"
+)
+_step_gate = kind_gate(
+    "step_gate", JOURNAL, _journal_step_limit, ("q", "qd", "mem", "fint", "freal"), "1e300"
+)
+
+
+@njit(cache=True)
+def advance_memory(t, q, qd, mem, fint, freal, tables, kinds=None):
+    """After an accepted step: record contact onsets (δ̇⁻) and separations [T16]; stop on
+    film breakdown. Returns 0 or FILM_BREAKDOWN + element index. ``kinds`` as in
+    :func:`eval_forces`."""
+    return _memory_gate(kinds, t, q, qd, mem, fint, freal, tables)
+
+
+@njit(cache=True)
+def onset_fraction(q0, qd0, q1, qd1, mem, fint, freal, kinds=None):
+    """If a trial step ends with an unresolved contact onset (penetration above the element's
+    onset tolerance while not in contact), the fraction of the step to retry with; else 1.0."""
+    return _onset_gate(kinds, q0, qd0, q1, qd1, mem, fint, freal)
+
+
+@njit(cache=True)
+def step_limit(q, qd, mem, fint, freal, kinds=None):
+    """Largest step that cannot carry a free journal through its gap at the current approach
+    speed [s]: (gap + tol)/δ̇ for elements not in contact (inf if none)."""
+    return _step_gate(kinds, q, qd, mem, fint, freal)
 
 
 def element_tables(elements, body_index, point_of):

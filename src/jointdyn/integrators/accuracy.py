@@ -20,6 +20,7 @@ from numba import njit
 
 from ..forces.elements import FILM_BREAKDOWN, NOUT, eval_forces
 from ..forces.journal import CONTACT, JOURNAL, NO_CONTACT, penetration
+from ..forces.kinds import kind_gate
 from ..layout import BODY_I, BODY_J, TYPE
 
 FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.OUT_COLUMNS)
@@ -35,13 +36,13 @@ def force_resolution(t, y, mem, P, rtol, atol, dF):
     Q = np.zeros(n)
     out0 = np.zeros((nf, NOUT))
     out1 = np.zeros((nf, NOUT))
-    eval_forces(t, y[:n], y[n:], mem, fint, freal, tables, Q, out0)
+    eval_forces(t, y[:n], y[n:], mem, fint, freal, tables, Q, out0, P.kinds)
     yp = y.copy()
     dF[:] = 0.0
     for j in range(nn):
         yp[j] = y[j] + (atol + rtol * abs(y[j]))
         Q[:] = 0.0
-        eval_forces(t, yp[:n], yp[n:], mem, fint, freal, tables, Q, out1)
+        eval_forces(t, yp[:n], yp[n:], mem, fint, freal, tables, Q, out1, P.kinds)
         for k in range(nf):
             dF[k] += np.hypot(out1[k, FX] - out0[k, FX], out1[k, FY] - out0[k, FY])
         yp[j] = y[j]
@@ -55,7 +56,11 @@ def film_gap_unresolved(q, qd, P, rtol, atol):
     integration then cannot tell the film from ξ ≥ 1 (breakdown). rtol = 0: no check."""
     if rtol <= 0.0:
         return 0
-    fint, freal = P.fint, P.freal
+    return _film_gap_gate(P.kinds, q, qd, P.fint, P.freal, rtol, atol)  # 0 without journals [T175]
+
+
+@njit(inline="always")
+def _film_gap(q, qd, fint, freal, rtol, atol):
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] != NO_CONTACT:
             continue
@@ -71,6 +76,11 @@ def film_gap_unresolved(q, qd, P, rtol, atol):
         if -d0 <= spread:
             return FILM_BREAKDOWN + k
     return 0
+
+
+_film_gap_gate = kind_gate(
+    "film_gap_gate", JOURNAL, _film_gap, ("q", "qd", "fint", "freal", "rtol", "atol"), "0"
+)
 
 
 @njit(cache=True)

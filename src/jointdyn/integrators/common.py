@@ -64,7 +64,7 @@ def accept_hooks(t, y, mem, P, do_project, rtol=0.0, atol=0.0):
             return PROJECTION_FAILED
     n = y.shape[0] // 2
     # non-zero codes from the elements (≥ 10, e.g. FILM_BREAKDOWN + element) pass through
-    st = advance_memory(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables)
+    st = advance_memory(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables, P.kinds)
     if st != OK:
         return st
     return film_gap_unresolved(y[:n], y[n:], P, rtol, atol)

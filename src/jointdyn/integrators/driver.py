@@ -219,7 +219,7 @@ def _entry(METHOD: int, EXACT: int):
                 stats[3] += 1
                 ictl[AGE] = 0
                 ctl[H_LU] = -1.0  # radau5: refactor with the new Jacobian
-            h = min(h, hmax, step_limit(y[:n], y[n:], mem, P.fint, P.freal))
+            h = min(h, hmax, step_limit(y[:n], y[n:], mem, P.fint, P.freal, P.kinds))
             h_prop = h
             if METHOD == ROS34PW2:  # no dense output: land on the next output time
                 if iout < nout and t + h >= t_out[iout] - 1e-14 * abs(t_out[iout]):
@@ -269,7 +269,7 @@ def _entry(METHOD: int, EXACT: int):
                 if METHOD == ROS34PW2 and ictl[AGE] > 0:  # a stale Jacobian may be the cause
                     ictl[AGE] = reuse
                 continue
-            frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal)
+            frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal, P.kinds)
             if frac < 1.0:
                 stats[2] += 1
                 h *= max(frac, 0.01)
