@@ -40,4 +40,6 @@ def test_dry(now, gold):
         g["max_penetration"], rel=1e-4
     )  # first impact; spread < 1.3e-5 (step ends only, before [T202]: 1.7e-3)
     assert abs(d["impacts"] - g["impacts"]) <= 3  # constant over the rtol range; ±3 for platform round-off
-    assert d["rms_moment"] == pytest.approx(g["rms_moment"], rel=0.03)  # ≈ 4× the measured 0.8 % spread (1.1 % before [T201])
+    assert d["rms_moment"] == pytest.approx(
+        g["rms_moment"], rel=0.03
+    )  # ≈ 4× the measured 0.8 % spread (1.1 % before [T201])
