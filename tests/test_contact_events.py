@@ -117,3 +117,18 @@ def test_onset_is_landed_and_fsal_survives_projection():
     assert res.memory(PIN, "impacts")[-1] == 1
     # measured: 0 rejections, 97 RHS; before [T201, T203]: 19 rejections, 332 RHS
     assert st["rejected_steps"] <= 2 and st["rhs_evaluations"] < 150
+
+
+def test_dry_steps_benchmark_classifies_every_attempt():
+    """benchmarks.dry_steps up to just after the first impact (0.02 rev ≈ 0.24 ms): every attempt
+    is classified once (6 RHS each with FSAL, + 1 at the start). No timing."""
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from benchmarks.dry_steps import trace
+
+    r = trace(1e-7, revs=0.02)
+    attempts = r["accepted_contact"] + r["accepted_free"] + r["rejected_error"] + r["rejected_onset"]
+    assert r["rhs"] == 6 * attempts + 1
+    assert r["impacts"] == 1 and r["accepted_contact"] > 0 and r["time_in_contact"] > 0
