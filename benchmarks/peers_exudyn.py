@@ -214,6 +214,8 @@ class _DryState:
         self.impacts = 0
         self.max_pen = 0.0
         self.first_pen = 0.0  # largest penetration of the first contact episode [m]
+        self.first_pen_hermite = 0.0  # the same, peaks between step ends included (see observe)
+        self.last = None  # (t, delta, deltadot) of the previous accepted step end
         self.calls = 0
 
     def force(self, mbs, t, item, e, edot, stiffness, damping, offset):
@@ -232,7 +234,7 @@ class _DryState:
             return [0.0, 0.0, 0.0]
         return [fn * ux, fn * uy, 0.0]
 
-    def observe(self, e, edot):
+    def observe(self, e, edot, t=None):
         d = math.hypot(e[0], e[1])
         delta = d - C_CLEAR
         if delta > 0.0:
@@ -244,6 +246,27 @@ class _DryState:
                 self.first_pen = max(self.first_pen, delta)
         else:
             self.dd_minus = None
+        if t is not None and self.impacts <= 1:  # (nothing more once the first episode is over)
+            dd = (edot[0] * e[0] + edot[1] * e[1]) / d if d > 0.0 else 0.0
+            self._first_peak_between_steps(t, delta, dd)
+
+    def _first_peak_between_steps(self, t, delta, dd):
+        """The first episode's peak between two step ends: maximum of the cubic Hermite
+        interpolant of delta(t) through (delta, deltadot) at both ends, on a grid (an analysis
+        of the stored step-end states, as jointdyn's max_penetration does, docs/theory.md)."""
+        if self.last is not None and self.impacts == 1 and self.last[2] > 0.0 > dd:
+            t0, d0, v0 = self.last
+            h = t - t0
+            th = np.linspace(0.0, 1.0, 1001)
+            p = (
+                (1 + 2 * th) * (1 - th) ** 2 * d0
+                + th * (1 - th) ** 2 * h * v0
+                + th**2 * (3 - 2 * th) * delta
+                + th**2 * (th - 1) * h * dd
+            )
+            self.first_pen_hermite = max(self.first_pen_hermite, float(p.max()))
+        self.first_pen_hermite = max(self.first_pen_hermite, self.first_pen)
+        self.last = (t, delta, dd)
 
     def make_prestep(self, exu, nR, nS):
         P, V, A = (
@@ -268,7 +291,7 @@ class _DryState:
         def prestep(mbs, t):
             p, v = rod_end(mbs)
             ps, vs = mbs.GetNodeOutput(nS, P), mbs.GetNodeOutput(nS, V)
-            self.observe((ps[0] - p[0], ps[1] - p[1]), (vs[0] - v[0], vs[1] - v[1]))
+            self.observe((ps[0] - p[0], ps[1] - p[1]), (vs[0] - v[0], vs[1] - v[1]), t)
             return True
 
         self.prestep = prestep
@@ -311,6 +334,7 @@ def _run(
         "max_penetration": None if st is None else st.max_pen,
         "impacts": None if st is None else st.impacts,
         "first_penetration": None if st is None else st.first_pen,
+        "first_penetration_hermite": None if st is None else st.first_pen_hermite,
         "t_steps": ts,
         "crank_moment_steps": moment_steps,
     }

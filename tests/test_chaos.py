@@ -155,7 +155,7 @@ def test_revolution_stats_count_impacts_of_the_dry_joint():
     res, _, summ = run_slider_crank("dry", 3.0, samples_per_rev=720, rtol=1e-8, atol=1e-11)
     st = revolution_stats(res, 0)
     assert st["impacts"].sum() == summ["impacts"]  # the counter is exact over accepted steps
-    assert st["max_penetration"].max() <= summ["max_penetration"] + 1e-15  # samples ⊂ accepted steps
+    assert st["max_penetration"].max() <= summ["max_penetration"] + 1e-15  # samples ≤ the peak of δ(t) [T202]
 
 
 def test_convergence_check_detects_a_shift():

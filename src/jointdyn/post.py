@@ -51,8 +51,8 @@ def impacts(res, element: str) -> int:
 
 
 def max_penetration(res, element: str) -> float:
-    """Largest contact penetration of a journal element over the accepted steps [m] (0 if it
-    never touched)."""
+    """Largest contact penetration of a journal element over the run, peaks between step ends
+    included ([T202]) [m] (0 if it never touched)."""
     m = res.memory(element, "max_penetration")
     return float(m[-1]) if m.size else 0.0
 

@@ -96,7 +96,7 @@ def summarize(res, cols: dict, revs: float) -> dict:
         out["contact_time_s"] = float(np.sum(dt * 0.5 * (in_contact[1:] + in_contact[:-1])))
         out["contact_fraction"] = out["contact_time_s"] / float(res.t[-1] - res.t[0])
         out["max_contact_force"] = float(cols["contact_force"].max())
-        out["max_penetration"] = post.max_penetration(res, el)  # over accepted steps
+        out["max_penetration"] = post.max_penetration(res, el)  # the continuous peak [T202]
         out["impacts"] = post.impacts(res, el)
     return out
 

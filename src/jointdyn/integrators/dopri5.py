@@ -58,3 +58,45 @@ def attempt_dopri5(t, h, P, w, rtol, atol):
     for i in range(nn):
         err[i] = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i])
     return 0, error_norm(err, y, y1, rtol, atol)
+
+
+FSAL_PROJECTION = 0.01  # largest projection correction (error-norm units) for which f(y₁) is reused
+
+
+@njit(cache=True)
+def fsal_reusable(y, y1, scratch, rtol, atol, projected):
+    """True if f(t+h, y₁) (k₇) can serve as k₁ of the next step at the accepted state y [T203]:
+    always without projection; after the projection y₁ → y when the correction is at most
+    ``FSAL_PROJECTION`` in the error norm. Reusing k₇ then perturbs the next step by
+    ≈ h·b₁·J·(y − y₁), below 0.1·h‖J‖·0.01 ≤ 3.3e-3 of the tolerance on DOPRI5's stability region
+    (h‖J‖ ≤ 3.3). ``scratch`` (len(y)) is overwritten."""
+    if not projected:
+        return True
+    for i in range(y.shape[0]):
+        scratch[i] = y[i] - y1[i]
+    return error_norm(scratch, y1, y, rtol, atol) <= FSAL_PROJECTION
+
+
+# step-size control of Hairer's DOPRI5 code (Hairer, Nørsett & Wanner 1993, §II.4 and the code's
+# defaults): Lund's PI stabilisation β = 0.04, factors within [0.2, 10], safety 0.9, no growth
+# right after a rejected step [T204]
+BETA = 0.04
+EXPO1 = 0.2 - 0.75 * BETA
+FAC_MIN, FAC_MAX, SAFE = 0.2, 10.0, 0.9
+
+
+@njit(cache=True)
+def dopri5_accepted(h, en, e_prev, rejected_before):
+    """(next h, error norm to remember) after an accepted step with error norm ``en`` [T204]."""
+    e = max(en, 1e-4)
+    fac = SAFE * e**-EXPO1 * e_prev**BETA
+    h_new = h * min(FAC_MAX, max(FAC_MIN, fac))
+    if rejected_before:
+        h_new = min(h_new, h)
+    return h_new, e
+
+
+@njit(cache=True)
+def dopri5_rejected(h, en):
+    """Next h after an error-test failure (en > 1) [T204]."""
+    return h * max(FAC_MIN, SAFE * en**-EXPO1)

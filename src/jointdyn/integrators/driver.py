@@ -24,10 +24,11 @@ import numpy as np
 from numba import njit
 
 from ..dynamics import rhs
+from ..forces.contact_events import onset_limit, refine_peaks
 from ..forces.elements import onset_fraction, step_limit
 from ..jacobian import jacobian_work_size, system_jacobian_into
 from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, write_dense
-from .dopri5 import attempt_dopri5
+from .dopri5 import attempt_dopri5, dopri5_accepted, dopri5_rejected, fsal_reusable
 from .radau5 import (
     HHFAC,
     attempt_radau5,
@@ -151,9 +152,7 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
 
 @njit(cache=True)
 def _reject_factor(method, en):
-    """Step-size factor after an error-test failure (en > 1)."""
-    if method == DOPRI5:
-        return max(0.2, 0.9 * en**-0.2)
+    """Step-size factor after an error-test failure (en > 1); DOPRI5: ``dopri5_rejected``."""
     if method == RODAS4:
         return max(0.2, 0.9 * en**-0.25)
     return max(0.2, 0.8 * en ** (-1.0 / 3.0))
@@ -220,6 +219,7 @@ def _entry(METHOD: int, EXACT: int):
                 ictl[AGE] = 0
                 ctl[H_LU] = -1.0  # radau5: refactor with the new Jacobian
             h = min(h, hmax, step_limit(y[:n], y[n:], mem, P.fint, P.freal, P.kinds))
+            h = min(h, onset_limit(y[:n], y[n:], w.f0[n:], mem, P.fint, P.freal, P.kinds))  # onset [T201]
             h_prop = h
             if METHOD == ROS34PW2:  # no dense output: land on the next output time
                 if iout < nout and t + h >= t_out[iout] - 1e-14 * abs(t_out[iout]):
@@ -265,6 +265,10 @@ def _entry(METHOD: int, EXACT: int):
                     if ictl[AGE] > 0:
                         ictl[AGE] = reuse
                     continue
+                if METHOD == DOPRI5:
+                    h = dopri5_rejected(h, en)
+                    ictl[4] = 1  # (radau5's REJECTED slot) no growth on the next accepted step
+                    continue
                 h *= _reject_factor(METHOD, en)
                 if METHOD == ROS34PW2 and ictl[AGE] > 0:  # a stale Jacobian may be the cause
                     ictl[AGE] = reuse
@@ -285,6 +289,7 @@ def _entry(METHOD: int, EXACT: int):
             elif METHOD == RADAU5:
                 store_polynomial(t_new - t, w)
                 iout = write_dense_radau5(t, t_new, y1, w.K, mem, t_out, iout, w.Y, w.MEM)
+            refine_peaks(y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal, P.kinds)  # [T202]
             y[:] = y1
             t = t_new
             stats[1] += 1
@@ -298,8 +303,8 @@ def _entry(METHOD: int, EXACT: int):
                     w.Y[iout] = y
                     w.MEM[iout] = mem
                     iout += 1
-            if METHOD == DOPRI5 and not (do_project and P.n_rows > 0):
-                w.K[0, :] = w.K[6]  # first-same-as-last
+            if METHOD == DOPRI5 and fsal_reusable(y, y1, w.err, rtol, atol, do_project and P.n_rows > 0):
+                w.K[0, :] = w.K[6]  # first-same-as-last [T203]
                 w.f0[:] = w.K[6]
             elif not (METHOD == RADAU5 and EXACT == 1):  # (radau5, exact: f0 after its controller)
                 if rhs(t, y, mem, P, w.f0) != 0:
@@ -310,7 +315,8 @@ def _entry(METHOD: int, EXACT: int):
                     w.K[0, :] = w.f0
             e_now = max(en, 1e-10)
             if METHOD == DOPRI5:
-                h *= min(5.0, max(0.2, 0.9 * e_now**-0.2))
+                h, ctl[E_PREV] = dopri5_accepted(h, en, ctl[E_PREV], ictl[4] == 1)
+                ictl[4] = 0
             elif METHOD == RODAS4:
                 h *= min(6.0, max(0.2, 0.9 * e_now**-0.25))
             elif METHOD == RADAU5:
