@@ -9,6 +9,7 @@ lines, markers, annotations, axis labels, scales and title of an Axes into a plo
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -112,14 +113,17 @@ def run_figure(runs, what: str, **kw):
         plt.close(ax.figure)
 
 
-def _plotly_js() -> str:
-    """plotly.js as shipped in the plotly package (the ``[interactive]`` extra), for offline pages."""
+def _copy_plotly_js(f) -> None:
+    """Copy plotly.js as shipped in the plotly package (the ``[interactive]`` extra) into the
+    binary file ``f``, in chunks (3.5 MB: never held as one string), for offline pages."""
     from importlib.resources import files
 
     try:
-        return files("plotly").joinpath("package_data", "plotly.min.js").read_text(encoding="utf-8")
+        src = files("plotly").joinpath("package_data", "plotly.min.js").open("rb")
     except (ModuleNotFoundError, FileNotFoundError):
         raise ImportError("interactive figures need plotly: pip install -e '.[interactive]'") from None
+    with src:
+        shutil.copyfileobj(src, f)
 
 
 def _js(obj) -> str:
@@ -168,7 +172,6 @@ def reproduction_html(runs: dict, out, revs: float) -> Path:
     building and validating those took ≈ 40 MB and most of the page's time, [T173])."""
     from . import post
 
-    js = _plotly_js()
     moments = []
     for res, _, _, case in runs.values():
         a = res.crank_angle()
@@ -226,12 +229,17 @@ def reproduction_html(runs: dict, out, revs: float) -> Path:
             )
         )
     out = Path(out)
-    out.write_text(
-        "<!DOCTYPE html><html><head><meta charset='utf-8'>"
-        "<title>jointdyn — interactive reproduction</title>"
-        f"<script>{js}</script></head>"
-        "<body style='font-family:sans-serif;max-width:1100px;margin:auto'>"
-        "<h1>Alshaer et al. (2005) reproduction, interactive</h1>" + "".join(parts) + "</body></html>",
-        encoding="utf-8",
-    )
+    with out.open("wb") as f:  # written piece by piece: the page is never one string in memory
+        f.write(
+            b"<!DOCTYPE html><html><head><meta charset='utf-8'>"
+            + "<title>jointdyn — interactive reproduction</title><script>".encode()
+        )
+        _copy_plotly_js(f)
+        f.write(
+            b"</script></head><body style='font-family:sans-serif;max-width:1100px;margin:auto'>"
+            b"<h1>Alshaer et al. (2005) reproduction, interactive</h1>"
+        )
+        for part in parts:
+            f.write(part.encode("utf-8"))
+        f.write(b"</body></html>")
     return out

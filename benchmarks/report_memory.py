@@ -1,0 +1,61 @@
+"""Memory of ``jointdyn reproduce alshaer2005`` phase by phase, in one process (Linux).
+
+Usage: ``python -m benchmarks.report_memory [--revs 4]``
+
+Prints the resident set (VmRSS) and its peak so far (VmHWM) [MB] after the imports, after all
+simulations of the reproduction, after the matplotlib figures and after ``interactive.html``
+(plotly.js data written directly, [T173]); run it with a warm JIT cache, else the simulations'
+row includes LLVM's compile-time memory. The dry ensemble (worker processes) is not run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import tempfile
+from pathlib import Path
+
+
+def _status() -> tuple[float, float]:
+    """(VmRSS, VmHWM) of this process [MB]."""
+    got = {}
+    for line in Path("/proc/self/status").read_text().splitlines():
+        key, _, val = line.partition(":")
+        if key in ("VmRSS", "VmHWM"):
+            got[key] = int(val.split()[0]) / 1024
+    return got["VmRSS"], got["VmHWM"]
+
+
+def main(argv=None) -> list[tuple[str, float, float]]:
+    ap = argparse.ArgumentParser(prog="python -m benchmarks.report_memory")
+    ap.add_argument("--revs", type=float, default=4.0)
+    a = ap.parse_args(argv)
+    rows = []
+
+    def mark(what: str) -> None:
+        rows.append((what, *_status()))
+        print(f"{what:<40} RSS {rows[-1][1]:6.0f} MB   peak {rows[-1][2]:6.0f} MB", flush=True)
+
+    import jointdyn.reproduce as rp
+
+    mark("imports")
+    runs = {}
+    for case in rp.PAPER_CASES + rp.BEYOND_CASES:
+        runs[case.name] = (*rp.run_case(case, a.revs), case)
+    mark(f"{len(runs)} simulations")
+    from jointdyn.reproduce_figures import figures
+
+    figures(runs, a.revs)
+    mark("matplotlib figures")
+    try:
+        from jointdyn.iplots import reproduction_html
+
+        with tempfile.TemporaryDirectory() as d:
+            reproduction_html(runs, Path(d) / "interactive.html", a.revs)
+        mark("interactive.html")
+    except ImportError:
+        print("interactive.html: needs the [interactive] extra (plotly)")
+    return rows
+
+
+if __name__ == "__main__":
+    main()
