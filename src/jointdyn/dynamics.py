@@ -172,6 +172,35 @@ def rhs(t, y, mem, P, ydot):
     return _accelerations(t, y[:n], y[n:], mem, P, qdd, lam, eout)
 
 
+@njit(inline="always")
+def _max_abs(v, m):
+    """max |v_r| over the first m entries (0 for m = 0)."""
+    res = 0.0
+    for r in range(m):
+        res = max(res, abs(v[r]))
+    return res
+
+
+@njit(inline="always")
+def _correct(x, J, lam, minv, m, n):
+    """x ← x − M⁻¹Φ_qᵀλ, in place: the M-weighted minimal correction of [T11]."""
+    for c in range(n):
+        s = 0.0
+        for r in range(m):
+            s += J[r, c] * lam[r]
+        x[c] -= minv[c] * s
+
+
+@njit(inline="always")
+def _velocity_residual(out, J, Phit, qd, m, n):
+    """out ← Φ̇ = Φ_t + Φ_q q̇ (m rows) [T11]."""
+    for r in range(m):
+        s = Phit[r]
+        for c in range(n):
+            s += J[r, c] * qd[c]
+        out[r] = s
+
+
 @njit(cache=True)
 def project_positions(t, q, qd, minv, cint, creal, m, tol, max_iter):
     """Gauss–Newton projection of q onto Φ(q, t) = 0, M-weighted minimal correction
@@ -186,20 +215,14 @@ def project_positions(t, q, qd, minv, cint, creal, m, tol, max_iter):
     res = 0.0
     for _ in range(max_iter):
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
-        res = 0.0
-        for r in range(m):
-            res = max(res, abs(Phi[r]))
+        res = _max_abs(Phi, m)
         if res <= tol:
             break
         S = _schur(J, minv, m, n)
         x = Phi.copy()
         if not cholesky_solve(S, x):
             return -1.0
-        for c in range(n):
-            s = 0.0
-            for r in range(m):
-                s += J[r, c] * x[r]
-            q[c] -= minv[c] * s
+        _correct(q, J, x, minv, m, n)
     return res
 
 
@@ -214,19 +237,11 @@ def project_velocities(t, q, qd, minv, cint, creal, m):
     gam = np.empty(m)
     eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
     v = np.empty(m)
-    for r in range(m):
-        s = Phit[r]
-        for c in range(n):
-            s += J[r, c] * qd[c]
-        v[r] = s
+    _velocity_residual(v, J, Phit, qd, m, n)
     S = _schur(J, minv, m, n)
     if not cholesky_solve(S, v):
         return False
-    for c in range(n):
-        s = 0.0
-        for r in range(m):
-            s += J[r, c] * v[r]
-        qd[c] -= minv[c] * s
+    _correct(qd, J, v, minv, m, n)
     return True
 
 
@@ -257,9 +272,7 @@ def project(t, y, P, tol):
     fresh = False  # Φ_q, Φ_t evaluated at the current q
     for _ in range(6):
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
-        res = 0.0
-        for r in range(m):
-            res = max(res, abs(Phi[r]))
+        res = _max_abs(Phi, m)
         if res <= tol:
             fresh = True
             break
@@ -267,26 +280,14 @@ def project(t, y, P, tol):
         x[:] = Phi
         if not cholesky_solve(S, x):
             return -1.0
-        for c in range(n):
-            s = 0.0
-            for r in range(m):
-                s += J[r, c] * x[r]
-            q[c] -= minv[c] * s
+        _correct(q, J, x, minv, m, n)
     if not fresh:  # six corrections without convergence: Φ_q at the last corrected q
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
-    for r in range(m):
-        s = Phit[r]
-        for c in range(n):
-            s += J[r, c] * qd[c]
-        x[r] = s
+    _velocity_residual(x, J, Phit, qd, m, n)
     _schur_into(S, J, minv, m, n)
     if not cholesky_solve(S, x):
         return -1.0
-    for c in range(n):
-        s = 0.0
-        for r in range(m):
-            s += J[r, c] * x[r]
-        qd[c] -= minv[c] * s
+    _correct(qd, J, x, minv, m, n)
     return res
 
 
@@ -324,9 +325,7 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
     factored = False
     if m > 0:
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
-        res = 0.0
-        for r in range(m):
-            res = max(res, abs(Phi[r]))
+        res = _max_abs(Phi, m)
         if do_project:
             it = 0
             ok = True
@@ -337,31 +336,17 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
                 if not cholesky_solve(S, lam):
                     ok = False
                     break
-                for c in range(n):
-                    s = 0.0
-                    for r in range(m):
-                        s += J[r, c] * lam[r]
-                    q[c] -= minv[c] * s
+                _correct(q, J, lam, minv, m, n)
                 eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
-                res = 0.0
-                for r in range(m):
-                    res = max(res, abs(Phi[r]))
+                res = _max_abs(Phi, m)
                 it += 1
             if ok:  # q̇ onto Φ̇ = Φ_t + Φ_q q̇ = 0 with Φ_q at the final q [T11]
                 _schur_into(S, J, minv, m, n)
                 factored = cholesky_factor(S)
                 if factored:
-                    for r in range(m):
-                        s = Phit[r]
-                        for c in range(n):
-                            s += J[r, c] * qd[c]
-                        lam[r] = s
+                    _velocity_residual(lam, J, Phit, qd, m, n)
                     cholesky_substitute(S, lam)
-                    for c in range(n):
-                        s = 0.0
-                        for r in range(m):
-                            s += J[r, c] * lam[r]
-                        qd[c] -= minv[c] * s
+                    _correct(qd, J, lam, minv, m, n)
                     # γ depends on q̇: evaluate it at the projected velocities (Φ, Φ_q, Φ_t are
                     # functions of (q, t) only and come out unchanged) [T190]
                     eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
