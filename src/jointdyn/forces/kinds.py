@@ -26,6 +26,8 @@ from collections.abc import Callable, Mapping, Sequence
 from numba import types
 from numba.extending import overload
 
+from ..layout import TYPE
+
 
 def kinds_tuple(codes: Sequence[int], known: Sequence[int]) -> tuple:
     """The kinds argument for a system whose elements have registry ``codes``: entry c is 1 if c
@@ -46,14 +48,31 @@ def codes_of(kinds, known: Sequence[int]) -> tuple[int, ...]:
     return tuple(c for c, t in enumerate(kinds.types) if not isinstance(t, types.NoneType) and c in known)
 
 
+def _overload(name: str, params: str, build: Callable[..., Callable]):
+    """A function ``name(params)`` for compiled callers only: its compiled body is the function
+    ``build(kinds)`` returns, generated at typing time from the numba type of ``kinds``, and is
+    inlined into the caller (the Python stub only raises)."""
+    src = f"def {name}({params}):\n    raise NotImplementedError('compiled only')\n"
+    src += f"def typed({params}):\n    return build(kinds)\n"
+    ns: dict = {"__name__": __name__, "build": build}
+    exec(compile(src, f"<{__name__}:{name}>", "exec"), ns)  # noqa: S102
+    overload(ns[name], prefer_literal=False, inline="always")(ns["typed"])
+    return ns[name]
+
+
+def _generated(name: str, lines: Sequence[str], namespace: Mapping) -> Callable:
+    """The function ``name`` defined by source ``lines`` with globals ``namespace`` (module name
+    included)."""
+    ns = {"__name__": __name__, **namespace}
+    exec(compile("\n".join(lines), f"<{__name__}:{name}>", "exec"), ns)  # noqa: S102
+    return ns[name]
+
+
 def kind_switch(name: str, kernels: Mapping[int, Callable], args: Sequence[str], default: str | None = None):
     """A compiled dispatch ``name(kinds, typ, *args)``: calls ``kernels[typ](*args)`` for the codes
     present in ``kinds`` and returns its result; for another ``typ`` it returns ``default`` (an
     expression; None: nothing, the kernels return nothing)."""
-
     arglist = ", ".join(args)
-    src = f"def {name}(kinds, typ, {arglist}):\n    raise NotImplementedError('compiled only')\n"
-    src += f"def typed(kinds, typ, {arglist}):\n    return build(kinds)\n"
 
     def build(kinds):
         codes = codes_of(kinds, tuple(kernels))
@@ -63,14 +82,9 @@ def kind_switch(name: str, kernels: Mapping[int, Callable], args: Sequence[str],
             lines.append(f"    {'if' if i == 0 else 'elif'} typ == {c}:")
             lines.append(f"        {'return ' + call if default is not None else call}")
         lines.append(f"    return {default}" if default is not None else "    return")
-        namespace = {"__name__": __name__, **{f"_k{c}": kernels[c] for c in codes}}
-        exec(compile("\n".join(lines), f"<jointdyn.forces.kinds:{name}>", "exec"), namespace)  # noqa: S102
-        return namespace[name]
+        return _generated(name, lines, {f"_k{c}": kernels[c] for c in codes})
 
-    ns: dict = {"__name__": __name__, "build": build}
-    exec(compile(src, f"<jointdyn.forces.kinds:{name}>", "exec"), ns)  # noqa: S102
-    overload(ns[name], prefer_literal=False, inline="always")(ns["typed"])
-    return ns[name]
+    return _overload(name, f"kinds, typ, {arglist}", build)
 
 
 def kind_gate(name: str, code: int, kernel: Callable, args: Sequence[str], default: str):
@@ -78,23 +92,12 @@ def kind_gate(name: str, code: int, kernel: Callable, args: Sequence[str], defau
     None), else the constant expression ``default`` without compiling ``kernel`` (e.g. the
     contact-onset checks of journal elements in a model that has none)."""
     arglist = ", ".join(args)
-    src = f"def {name}(kinds, {arglist}):\n    raise NotImplementedError('compiled only')\n"
-    src += f"def typed(kinds, {arglist}):\n    return build(kinds)\n"
 
     def build(kinds):
-        present = code in codes_of(kinds, (code,))
-        body = f"_kernel({arglist})" if present else default
-        namespace = {"__name__": __name__, "_kernel": kernel}
-        exec(
-            compile(f"def {name}(kinds, {arglist}):\n    return {body}\n", f"<{__name__}:{name}>", "exec"),
-            namespace,
-        )  # noqa: S102
-        return namespace[name]
+        body = f"_kernel({arglist})" if code in codes_of(kinds, (code,)) else default
+        return _generated(name, [f"def {name}(kinds, {arglist}):", f"    return {body}"], {"_kernel": kernel})
 
-    ns: dict = {"__name__": __name__, "build": build}
-    exec(compile(src, f"<{__name__}:{name}>", "exec"), ns)  # noqa: S102
-    overload(ns[name], prefer_literal=False, inline="always")(ns["typed"])
-    return ns[name]
+    return _overload(name, f"kinds, {arglist}", build)
 
 
 def kind_loop(name: str, kernels: Mapping[int, Callable | tuple], args: Sequence[str], constants: Mapping):
@@ -106,27 +109,18 @@ def kind_loop(name: str, kernels: Mapping[int, Callable | tuple], args: Sequence
     call level per element (measured: either costs ≈ 15 % of a journal element's evaluation)."""
     arglist = ", ".join(args)
     element_args = ", ".join([*args[:3], "k", *args[3:]])
-    src = f"def {name}(kinds, {arglist}):\n    raise NotImplementedError('compiled only')\n"
-    src += f"def typed(kinds, {arglist}):\n    return build(kinds)\n"
 
     def build(kinds):
         codes = codes_of(kinds, tuple(kernels))
         lines = [f"def {name}(kinds, {arglist}):", "    for k in range(fint.shape[0]):"]
-        if codes:
-            lines.append("        typ = fint[k, 0]")
-        else:
-            lines.append("        pass")
-        namespace = {"__name__": __name__, **constants}
+        lines.append(f"        typ = fint[k, {TYPE}]" if codes else "        pass")
+        namespace = dict(constants)
         for i, c in enumerate(codes):
             entry = kernels[c]
             fn, call_args = entry if isinstance(entry, tuple) else (entry, element_args)
             namespace[f"_k{c}"] = fn
             lines.append(f"        {'if' if i == 0 else 'elif'} typ == {c}:")
             lines.append(f"            _k{c}({call_args})")
-        exec(compile("\n".join(lines), f"<{__name__}:{name}>", "exec"), namespace)  # noqa: S102
-        return namespace[name]
+        return _generated(name, lines, namespace)
 
-    ns: dict = {"__name__": __name__, "build": build}
-    exec(compile(src, f"<{__name__}:{name}>", "exec"), ns)  # noqa: S102
-    overload(ns[name], prefer_literal=False, inline="always")(ns["typed"])
-    return ns[name]
+    return _overload(name, f"kinds, {arglist}", build)
