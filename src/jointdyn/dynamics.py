@@ -107,6 +107,36 @@ def accelerations(t, q, qd, mem, P, qdd, lam, eout):
     return _accelerations(t, q, qd, mem, P, qdd, lam, eout)
 
 
+@njit(inline="always")
+def _baumgarte(gam, Phi, Phit, J, qd, a, m, n):
+    """γ ← γ − 2αΦ̇ − α²Φ (Baumgarte stabilisation with α [1/s], [T10])."""
+    for r in range(m):
+        phid = Phit[r]
+        for c in range(n):
+            phid += J[r, c] * qd[c]
+        gam[r] -= 2.0 * a * phid + a * a * Phi[r]
+
+
+@njit(inline="always")
+def _multiplier_rhs(lam, gam, J, minv, Q, m, n):
+    """lam ← γ − Φ_q M⁻¹Q: the right-hand side of (Φ_q M⁻¹Φ_qᵀ)λ = … [T10]."""
+    for r in range(m):
+        s = gam[r]
+        for c in range(n):
+            s -= J[r, c] * minv[c] * Q[c]
+        lam[r] = s
+
+
+@njit(inline="always")
+def _qdd_of(qdd, Q, J, lam, minv, m, n):
+    """q̈ = M⁻¹(Q + Φ_qᵀλ) [T10]."""
+    for c in range(n):
+        s = Q[c]
+        for r in range(m):
+            s += J[r, c] * lam[r]
+        qdd[c] = minv[c] * s
+
+
 @njit(cache=True, inline="always")
 def _accelerations(t, q, qd, mem, P, qdd, lam, eout):
     """:func:`accelerations`, inlined into :func:`rhs` (a call with the packed system and the
@@ -129,24 +159,12 @@ def _accelerations(t, q, qd, mem, P, qdd, lam, eout):
         eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
         a = stab[0]
         if a > 0.0:
-            for r in range(m):
-                phid = Phit[r]
-                for c in range(n):
-                    phid += J[r, c] * qd[c]
-                gam[r] -= 2.0 * a * phid + a * a * Phi[r]
+            _baumgarte(gam, Phi, Phit, J, qd, a, m, n)
         _schur_into(S, J, minv, m, n)
-        for r in range(m):
-            s = gam[r]
-            for c in range(n):
-                s -= J[r, c] * minv[c] * Q[c]
-            lam[r] = s
+        _multiplier_rhs(lam, gam, J, minv, Q, m, n)
         if not cholesky_solve(S, lam):
             return SINGULAR
-        for c in range(n):
-            s = Q[c]
-            for r in range(m):
-                s += J[r, c] * lam[r]
-            qdd[c] = minv[c] * s
+        _qdd_of(qdd, Q, J, lam, minv, m, n)
     else:
         for c in range(n):
             qdd[c] = minv[c] * Q[c]
@@ -365,27 +383,15 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
     if m > 0:
         a = P.stab[0]
         if a > 0.0:
-            for r in range(m):
-                phid = Phit[r]
-                for c in range(n):
-                    phid += J[r, c] * qd[c]
-                gam[r] -= 2.0 * a * phid + a * a * Phi[r]
+            _baumgarte(gam, Phi, Phit, J, qd, a, m, n)
         if not factored:
             _schur_into(S, J, minv, m, n)
-        for r in range(m):
-            s = gam[r]
-            for c in range(n):
-                s -= J[r, c] * minv[c] * Q[c]
-            lam[r] = s
+        _multiplier_rhs(lam, gam, J, minv, Q, m, n)
         if not factored:
             if not cholesky_factor(S):
                 return SINGULAR
         cholesky_substitute(S, lam)
-        for c in range(n):
-            s = Q[c]
-            for r in range(m):
-                s += J[r, c] * lam[r]
-            qdd[c] = minv[c] * s
+        _qdd_of(qdd, Q, J, lam, minv, m, n)
     else:
         for c in range(n):
             qdd[c] = minv[c] * Q[c]
