@@ -38,6 +38,18 @@ def _deg(res):
     return np.degrees(a - a[0])
 
 
+def _sheet(fig, size, *grid, **kw):
+    """The report's one figure, cleared and resized to ``size`` [in], with new subplots (a new
+    Figure per plot kept ≈ 3 MB each in matplotlib's native text caches, [T173])."""
+    from matplotlib import rcParams
+
+    fig.clf()
+    pars = ("left", "right", "bottom", "top", "wspace", "hspace")  # clf() keeps the last tight_layout
+    fig.subplots_adjust(**{k: rcParams[f"figure.subplot.{k}"] for k in pars})
+    fig.set_size_inches(*size)
+    return fig.subplots(*grid, **kw)
+
+
 def figures(runs: dict, revs: float) -> dict[str, bytes]:
     """All report figures as PNG bytes, keyed by file name."""
     import matplotlib
@@ -45,13 +57,21 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    fig = plt.figure()
+    try:
+        return _figures(fig, runs, revs)
+    finally:
+        plt.close(fig)
+
+
+def _figures(fig, runs: dict, revs: float) -> dict[str, bytes]:
     figs = {}
     col = _colors(runs)
     names = [n for n in PAPER if n in runs]
     last = {n: _last(runs[n][0], revs) for n in runs}
     one = "last revolution" if revs >= 1 else f"{revs:g} revolution"
     for n in names:
-        fig, ax = plt.subplots(figsize=(8, 3.8))
+        ax = _sheet(fig, (8, 3.8))
         res = runs[n][0]
         plots.moment_vs_angle(
             res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=col[n]
@@ -59,11 +79,10 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         ax.set_title(f"crank driving moment, {revs:g} revolutions — {runs[n][3].label}", fontsize=10)
         fig.tight_layout()
         figs[f"moment_{n}.png"] = _png(fig)
-        plt.close(fig)
     # overlay: smooth cases on their own scale, the dry joint's spikes in a panel of their own
     smooth = [n for n in names if n != "dry"]
     panels = 2 if "dry" in names else 1
-    fig, axs = plt.subplots(panels, 1, figsize=(8, 3.6 * panels), sharex=True, squeeze=False)
+    axs = _sheet(fig, (8, 3.6 * panels), panels, 1, sharex=True, squeeze=False)
     for n in smooth:
         r = last[n]
         axs[0, 0].plot(
@@ -99,10 +118,9 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
     fig.tight_layout()
     figs["moment_overlay.png"] = _png(fig)
-    plt.close(fig)
     beyond = [n for n in runs if n not in names]
     if beyond:
-        fig, ax = plt.subplots(figsize=(8, 4.4))
+        ax = _sheet(fig, (8, 4.4))
         for n in ["perfect"] + beyond if "perfect" in runs else beyond:
             r = last[n]
             ax.plot(
@@ -123,19 +141,17 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         ax.legend(fontsize=8, loc="lower left")
         fig.tight_layout()
         figs["moment_beyond.png"] = _png(fig)
-        plt.close(fig)
     for n in [n for n in runs if "piston_pin" in runs[n][0].journals()]:
-        fig, ax = plt.subplots(figsize=(4.8, 5.2))
+        ax = _sheet(fig, (4.8, 5.2))
         ex, ey = last[n].orbit("piston_pin", frame="bushing")
         plots.journal_orbit(ex, ey, ax=ax, frame="rod", color=col[n], label="journal centre")
         ax.set_title(f"journal centre path, {one}\n{runs[n][3].label}", fontsize=9)
         ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4, frameon=False)
         fig.tight_layout()
         figs[f"orbit_{n}.png"] = _png(fig)
-        plt.close(fig)
     lub = [n for n in runs if runs[n][3].joint not in ("perfect", "dry")]
     if lub:
-        fig, ax = plt.subplots(figsize=(8, 4.4))
+        ax = _sheet(fig, (8, 4.4))
         for n in lub:
             r = last[n]
             plots.series_vs_angle(
@@ -155,10 +171,9 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
         fig.tight_layout()
         figs["film_thickness.png"] = _png(fig)
-        plt.close(fig)
     imp = [n for n in names if n != "perfect" and "piston_pin" in runs[n][0].journals()]
     if imp:
-        fig, axs = plt.subplots(len(imp), 1, figsize=(8, 2.4 * len(imp) + 0.6), sharex=True, squeeze=False)
+        axs = _sheet(fig, (8, 2.4 * len(imp) + 0.6), len(imp), 1, sharex=True, squeeze=False)
         for ax, n in zip(axs[:, 0], imp):
             r = last[n]
             f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
@@ -182,5 +197,4 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         fig.suptitle("force on the journal (piston pin)", fontsize=10)
         fig.tight_layout()
         figs["joint_force.png"] = _png(fig)
-        plt.close(fig)
     return figs
