@@ -55,7 +55,9 @@ def test_failed_case_is_recorded_and_sweep_goes_on(tmp_path):
 def test_killed_sweep_resumes_without_recomputing(tmp_path):
     sweep_file = tmp_path / "sweep.toml"
     sweep_file.write_text(
-        '[base]\nmodel = "slider-crank"\njoint = "perfect"\nrevs = 2.0\nsamples_per_rev = 360\n'
+        # 40 revolutions: ≈ 60 ms a case, so the 16 cannot all land between two polls (at 2
+        # revolutions the faster kernels finished every case before the kill)
+        '[base]\nmodel = "slider-crank"\njoint = "perfect"\nrevs = 40.0\nsamples_per_rev = 360\n'
         "[grid]\nspeed = [" + ", ".join(f"{100.0 + 10 * i}" for i in range(16)) + "]\n"
     )
     out = tmp_path / "out"
