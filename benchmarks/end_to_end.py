@@ -108,6 +108,15 @@ _MEASURE = (
 )
 
 
+def measure(cmd: list[str], env: dict) -> tuple[float, float]:
+    """(wall time [s], peak RSS [MB]) of ``cmd`` run in a fresh process with ``env``."""
+    r = subprocess.run(
+        [sys.executable, "-c", _MEASURE, *cmd], check=True, env=env, cwd=ROOT, capture_output=True, text=True
+    )
+    wall, rss = r.stdout.split()
+    return float(wall), float(rss) / 1024
+
+
 def cli_row(joint):
     """(warm [s], cold [s], peak RSS of the cold and the warm run [MB]) of the CLI run, each in a
     fresh process."""
@@ -117,16 +126,7 @@ def cli_row(joint):
         cold_env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(cache, "numba"), XDG_CACHE_HOME=cache)
         for label in ("cold", "warm", "warm2"):
             with tempfile.TemporaryDirectory() as d:
-                r = subprocess.run(
-                    [sys.executable, "-c", _MEASURE, *exe, "--out", os.path.join(d, "o")],
-                    check=True,
-                    env=cold_env,
-                    cwd=ROOT,
-                    capture_output=True,
-                    text=True,
-                )
-                wall, rss = r.stdout.split()
-                out[label], out[label + "_rss"] = float(wall), float(rss) / 1024
+                out[label], out[label + "_rss"] = measure([*exe, "--out", os.path.join(d, "o")], cold_env)
     warm = min(out["warm"], out["warm2"])
     return {
         "case": f"cli {joint}",

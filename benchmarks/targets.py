@@ -24,29 +24,11 @@ from __future__ import annotations
 import argparse
 import math
 import os
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
 from benchmarks import end_to_end, outputs_cost, work_precision
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def _peak(cmd: list[str], env: dict) -> tuple[float, float]:
-    """(wall time [s], peak RSS [MB]) of ``cmd`` in a fresh process (a fresh parent per
-    measurement, so RUSAGE_CHILDREN holds exactly that command)."""
-    r = subprocess.run(
-        [sys.executable, "-c", end_to_end._MEASURE, *cmd],
-        check=True,
-        env=env,
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-    )
-    wall, rss = r.stdout.split()
-    return float(wall), float(rss) / 1024
 
 
 def cli_rows(cold: bool) -> dict:
@@ -60,7 +42,7 @@ def cli_rows(cold: bool) -> dict:
             runs = {}
             for label in ("cold", "warm", "warm2") if cold else ("warm0", "warm", "warm2"):
                 with tempfile.TemporaryDirectory() as d:
-                    runs[label] = _peak([*cmd, "--out", os.path.join(d, "o")], warm_env)
+                    runs[label] = end_to_end.measure([*cmd, "--out", os.path.join(d, "o")], warm_env)
             warm = min(runs["warm"], runs["warm2"])
             out[joint] = {"warm_s": warm[0], "warm_MB": max(runs["warm"][1], runs["warm2"][1])}
             if cold:
@@ -69,8 +51,10 @@ def cli_rows(cold: bool) -> dict:
         with tempfile.TemporaryDirectory() as cache2, tempfile.TemporaryDirectory() as d:
             if cold:
                 env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(cache2, "numba"), XDG_CACHE_HOME=cache2)
-                out["reproduce_cold"] = _peak([*rep, "--out", os.path.join(d, "c")], env)
-            out["reproduce_warm"] = _peak([*rep, "--out", os.path.join(d, "w")], dict(os.environ))
+                out["reproduce_cold"] = end_to_end.measure([*rep, "--out", os.path.join(d, "c")], env)
+            out["reproduce_warm"] = end_to_end.measure(
+                [*rep, "--out", os.path.join(d, "w")], dict(os.environ)
+            )
     return out
 
 

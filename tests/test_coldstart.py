@@ -14,9 +14,8 @@ import pytest
 from jointdyn.forces.elements import FORCE_ELEMENTS
 from jointdyn.integrators.driver import _ENTRIES, DOPRI5, METHODS
 
-CHILD = textwrap.dedent(
-    """
-    import json, sys
+# a child script's prelude: records the name of every function numba compiles in `names`
+LISTENER = """
     from numba.core import event as ev
     names = []
     class L(ev.Listener):
@@ -26,7 +25,14 @@ CHILD = textwrap.dedent(
             f = e.data["dispatcher"].py_func
             names.append(f.__module__ + "." + f.__qualname__)
     ev.register("numba:compile", L())
-    from jointdyn.models import slider_crank as sc
+"""
+
+CHILD = textwrap.dedent(
+    """
+    import json, sys
+    """
+    + LISTENER
+    + """    from jointdyn.models import slider_crank as sc
     from jointdyn.runs import slider_crank_config
     from jointdyn.simulate import simulate
     res = simulate(sc.slider_crank("perfect").compile(), slider_crank_config("perfect", 0.02, solver=sys.argv[1]))
@@ -76,16 +82,9 @@ KINDS_CHILD = textwrap.dedent(
     """
     import json, sys
     import numpy as np
-    from numba.core import event as ev
-    names = []
-    class L(ev.Listener):
-        def on_start(self, e):
-            pass
-        def on_end(self, e):
-            f = e.data["dispatcher"].py_func
-            names.append(f.__module__ + "." + f.__qualname__)
-    ev.register("numba:compile", L())
-    from jointdyn.forces.elements import NOUT, eval_forces, kinds_of
+    """
+    + LISTENER
+    + """    from jointdyn.forces.elements import NOUT, eval_forces, kinds_of
     from jointdyn.forces.springs import SpringDamper
     from jointdyn.model import Model
     m = Model("oscillator", gravity=(0.0, 0.0))
