@@ -6,9 +6,11 @@ a non-zero exit code and no traceback; nothing corrupt ever sits under a final f
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import json
 import math
+import operator
 import signal
 import socket
 import subprocess
@@ -530,19 +532,29 @@ def test_interrupted_ensemble_stops_its_workers_promptly(tmp_path):
 
 
 def test_signal_while_the_report_is_written_stops_it(tmp_path, monkeypatch):
-    """Ctrl-C after the simulations, while the figures are drawn: the reproduction stops before
-    the next file with status ``interrupted`` (it completed and said ``complete``), keeping the
-    files written so far, each whole."""
+    """Ctrl-C after the simulations, while the figures are drawn (in their own process): the
+    reproduction stops before the next file with status ``interrupted`` (it completed and said
+    ``complete``), keeping the files written so far, each whole, and kills the drawing."""
     from jointdyn import interrupts, reproduce, rundir
 
-    real = reproduce.figures
+    real, popen, procs = reproduce.drawing, subprocess.Popen, []
 
-    def figures_then_ctrl_c(runs, revs):
-        figs = real(runs, revs)
-        interrupts._handler(signal.SIGINT, None)  # the signal arrives while the figures are drawn
-        return figs
+    def recorded(*args, **kw):
+        procs.append(popen(*args, **kw))
+        return procs[-1]
 
-    monkeypatch.setattr(reproduce, "figures", figures_then_ctrl_c)
+    @contextlib.contextmanager
+    def drawing_then_ctrl_c(runs, revs):
+        with real(runs, revs) as drawn:
+
+            def wait():
+                interrupts._handler(signal.SIGINT, None)  # the signal arrives while the figures are drawn
+                return drawn()
+
+            yield wait
+
+    monkeypatch.setattr(reproduce, "drawing", drawing_then_ctrl_c)
+    monkeypatch.setattr(subprocess, "Popen", recorded)
     out = tmp_path / "r"
     with interrupts.catching(), pytest.raises(Interrupted):
         reproduce.reproduce_alshaer2005(out, beyond=False, revs=0.05, ensemble=False)
@@ -551,3 +563,22 @@ def test_signal_while_the_report_is_written_stops_it(tmp_path, monkeypatch):
     assert not (out / "report.html").exists() and not list(out.glob("*.png"))
     assert (out / "summary.csv").exists()  # written before the signal, listed, whole
     assert "summary.csv" in man["files"]
+    assert [p.returncode for p in procs] == [-signal.SIGKILL]  # the drawing was killed (it needs > 0.5 s)
+
+
+class _Unloadable:
+    """Pickles, but fails to unpickle (ZeroDivisionError) in the process that loads it."""
+
+    def __reduce__(self):
+        return (operator.truediv, (1, 0))
+
+
+def test_a_failed_drawing_says_why():
+    """The figures' process fails: the error says so and carries the end of its error output."""
+    from jointdyn import interrupts
+    from jointdyn.reproduce_figures import drawing
+
+    expect = r"drawing the report figures failed \(exit 1\).*ZeroDivisionError"
+    with interrupts.catching(), pytest.raises(RuntimeError, match=expect):
+        with drawing({"case": _Unloadable()}, 1.0) as drawn:
+            drawn()

@@ -12,7 +12,7 @@ import os
 from collections.abc import Callable, Iterable
 
 
-def _worker_init(parent: int) -> None:
+def worker_init(parent: int) -> None:
     """Worker processes ignore Ctrl-C (the parent stops them) and die with their parent
     (Linux ``PR_SET_PDEATHSIG``), so a killed run leaves no orphans."""
     import signal
@@ -42,7 +42,7 @@ def run_local(fn: Callable, calls: Iterable[tuple], workers: int | None, record:
     from . import interrupts
 
     ex = ProcessPoolExecutor(
-        max_workers=workers or os.cpu_count(), initializer=_worker_init, initargs=(os.getpid(),)
+        max_workers=workers or os.cpu_count(), initializer=worker_init, initargs=(os.getpid(),)
     )
     try:
         pending = {ex.submit(fn, *args): key for key, args in calls}

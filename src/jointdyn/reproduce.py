@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from . import post
-from .reproduce_figures import figures
+from .reproduce_figures import drawing
 from .runs import run_slider_crank
 
 
@@ -336,21 +336,22 @@ def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
         atomic.write_bytes(out / name, data)
         od.record(name)
 
-    ens = None
-    if ensemble:  # after the paper's dry case: the worker processes reuse its compiled code
-        from .reproduce_ensemble import dry_ensemble, ensemble_json, ensemble_markdown, ensemble_sentence
+    with drawing(runs, revs) as drawn:  # in another process, meanwhile the ensemble runs [T220]
+        ens = None
+        if ensemble:  # after the paper's dry case: the worker processes reuse its compiled code
+            from .reproduce_ensemble import dry_ensemble, ensemble_json, ensemble_markdown, ensemble_sentence
 
-        t0 = time.perf_counter()
-        ens = dry_ensemble()
-        ens["wall_time_s"] = time.perf_counter() - t0
-        put("ensemble_dry.json", ensemble_json(ens))
-        put("ensemble_dry.md", (ensemble_markdown(ens) + "\n\n" + ensemble_sentence(ens) + "\n").encode())
-        if progress:
-            progress("dry ensemble", 1.0)
+            t0 = time.perf_counter()
+            ens = dry_ensemble()
+            ens["wall_time_s"] = time.perf_counter() - t0
+            put("ensemble_dry.json", ensemble_json(ens))
+            put("ensemble_dry.md", (ensemble_markdown(ens) + "\n\n" + ensemble_sentence(ens) + "\n").encode())
+            if progress:
+                progress("dry ensemble", 1.0)
 
-    for name, data in csv_files(runs).items():
-        put(name, data)
-    figs = figures(runs, revs)
+        for name, data in csv_files(runs).items():
+            put(name, data)
+        figs = drawn()
     for name, png in figs.items():
         put(name, png)
     params = {

@@ -1,9 +1,18 @@
 """Figures of the reproduction of Alshaer et al. (2005): the paper's figure equivalents and the
-beyond-the-paper overlay, as PNG bytes (used by :mod:`jointdyn.reproduce`)."""
+beyond-the-paper overlay, as PNG bytes (used by :mod:`jointdyn.reproduce`), drawn in a process of
+their own (:func:`drawing`, [T220])."""
 
 from __future__ import annotations
 
 import io
+import os
+import pickle
+import subprocess
+import sys
+import tempfile
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
 
 import numpy as np
 
@@ -62,6 +71,55 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
         return _figures(fig, runs, revs)
     finally:
         plt.close(fig)
+
+
+@contextmanager
+def drawing(runs: dict, revs: float) -> Iterator[Callable[[], dict[str, bytes]]]:
+    """Start drawing :func:`figures` in a fresh interpreter; yields a function that waits for
+    them and returns them. matplotlib (≈ 70 MB with its drawing) then never shares a process
+    with numba's loaded kernels (≈ 130 MB), so the reproduction's peak resident set is the larger
+    of the two, not their sum [T220]; the caller goes on (e.g. with the dry ensemble) meanwhile.
+    The drawing process ignores Ctrl-C and dies with its parent; a signal while waiting raises
+    :class:`~jointdyn.errors.Interrupted` (the drawing is killed), a failed drawing raises
+    ``RuntimeError`` with the end of its error output."""
+    with tempfile.TemporaryDirectory(prefix="jointdyn-figures-") as d:
+        src, dst, err = Path(d, "runs.pickle"), Path(d, "figures.pickle"), Path(d, "stderr")
+        src.write_bytes(pickle.dumps((runs, revs), protocol=pickle.HIGHEST_PROTOCOL))
+        code = f"from {__name__} import _draw; _draw({str(src)!r}, {str(dst)!r}, {os.getpid()})"
+        with err.open("wb") as stderr:
+            quiet = subprocess.DEVNULL
+            proc = subprocess.Popen([sys.executable, "-c", code], stdin=quiet, stdout=quiet, stderr=stderr)
+        try:
+            yield lambda: _collect(proc, dst, err)
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+            proc.wait()
+
+
+def _collect(proc: subprocess.Popen, dst: Path, err: Path) -> dict[str, bytes]:
+    from . import interrupts
+
+    while True:
+        try:
+            proc.wait(timeout=0.1)
+            break
+        except subprocess.TimeoutExpired:
+            interrupts.check()
+    if proc.returncode != 0:
+        tail = err.read_text(errors="replace").strip().splitlines()[-5:]
+        raise RuntimeError(f"drawing the report figures failed (exit {proc.returncode}): " + " | ".join(tail))
+    return pickle.loads(dst.read_bytes())
+
+
+def _draw(src: str, dst: str, parent: int) -> None:
+    """The drawing process: :func:`figures` of the pickled runs, pickled into ``dst``."""
+    from .atomic import write_bytes
+    from .pool import worker_init
+
+    worker_init(parent)
+    runs, revs = pickle.loads(Path(src).read_bytes())
+    write_bytes(Path(dst), pickle.dumps(figures(runs, revs), protocol=pickle.HIGHEST_PROTOCOL))
 
 
 def _figures(fig, runs: dict, revs: float) -> dict[str, bytes]:
