@@ -185,3 +185,35 @@ def test_plot_pressure_at_a_crank_angle(tmp_path):
     assert r.exit_code == 2 and "covers" in r.output
     r = runner.invoke(app, ["plot", str(out), "--what", "pressure"])
     assert r.exit_code == 2 and "--at" in r.output
+
+
+def test_a_compiling_run_says_so_and_how_long(capsys):
+    """While numba compiles (a first run) the progress display shows a "compiling" line instead
+    of a silent wait, and afterwards how much of the run it was; a function loaded from numba's
+    cache sends no compile event, so a warm run says nothing (numba's event API)."""
+    import time
+
+    from numba import njit
+
+    from jointdyn import cli
+
+    @njit  # a new function: compiled here, never cached
+    def slow_to_compile(x):
+        return x + 1.0
+
+    with cli._progress("run") as prog:
+        task = prog.add_task("case", 1.0)
+        shown = []
+        prog.compiling = lambda s, real=prog.compiling: (shown.append(s), real(s))[1]
+        t0 = time.perf_counter()
+        slow_to_compile(1.0)
+        elapsed = time.perf_counter() - t0
+        prog.update(task, 1.0)
+        prog.compile_s = max(prog.compile_s, 1.0)  # the closing line is printed from 1 s on
+    assert shown[0] is None and len(shown) == 2 and 0 < shown[1] <= elapsed  # start, then its duration
+    assert "first run: 1 s of it compiling" in capsys.readouterr().out
+
+    with cli._progress("run") as prog:  # nothing compiles: no line, no note
+        prog.add_task("case", 1.0)
+        slow_to_compile(2.0)
+    assert prog.compile_s == 0.0 and prog._prog is None

@@ -10,10 +10,12 @@ from __future__ import annotations
 
 import contextlib
 import os
+import time
 import warnings
 from pathlib import Path
 
 import typer
+from numba.core import event
 from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
@@ -147,25 +149,38 @@ def _one_line_errors(out: Path | None = None):
 
 class _progress:
     """A rich progress display that appears at the first update (so that a run refused by
-    its checks prints nothing but its one error line)."""
+    its checks prints nothing but its one error line), or when numba starts compiling: a first
+    run of a kind of model shows a "compiling" line with its elapsed time instead of a silent
+    wait, and says afterwards how much of the run was compiling [T221]."""
+
+    COMPILING = "compiling (first run of this kind of model; cached afterwards)"
 
     def __init__(self, description: str):
         self.description = description
         self._prog = None
         self._tasks: list = []
+        self.compile_s = 0.0
 
     def __enter__(self):
+        self._listening = event.install_listener("numba:compile", _CompileNotice(self))
+        self._listening.__enter__()
         return self
 
     def __exit__(self, *exc):
+        self._listening.__exit__(*exc)
         if self._prog is not None:
             self._prog.stop()
+        if self.compile_s >= 1.0 and exc[0] is None:
+            console.print(
+                f"[dim]first run: {self.compile_s:.0f} s of it compiling the numerical kernels, once "
+                "(later runs of this kind of model load them from the cache)[/dim]"
+            )
 
     def add_task(self, name: str, total: float) -> int:
         self._tasks.append((name, total))
         return len(self._tasks) - 1
 
-    def update(self, task: int, completed: float) -> None:
+    def _started(self):
         if self._prog is None:
             from rich.progress import BarColumn, Progress, TimeElapsedColumn, TimeRemainingColumn
 
@@ -180,7 +195,39 @@ class _progress:
             )
             self._ids = [self._prog.add_task(escape(n), total=t) for n, t in self._tasks]
             self._prog.start()
-        self._prog.update(self._ids[task], completed=completed)
+        return self._prog
+
+    def update(self, task: int, completed: float) -> None:
+        self._started().update(self._ids[task], completed=completed)
+
+    def compiling(self, seconds: float | None) -> None:
+        """A top-level compilation starts (None) or ended after ``seconds`` [s]."""
+        prog = self._started()
+        if seconds is None:
+            self._compile_task = prog.add_task(self.COMPILING, total=None)
+        else:
+            prog.remove_task(self._compile_task)
+            self.compile_s += seconds
+
+
+class _CompileNotice(event.Listener):
+    """numba compile-event listener: tells ``prog`` when an outermost compilation starts and
+    ends (nested compilations of callees are part of it); numba sends no event for a function
+    loaded from its cache."""
+
+    def __init__(self, prog: _progress):
+        self.prog, self.depth, self.t0 = prog, 0, 0.0
+
+    def on_start(self, ev) -> None:
+        if self.depth == 0:
+            self.t0 = time.perf_counter()
+            self.prog.compiling(None)
+        self.depth += 1
+
+    def on_end(self, ev) -> None:
+        self.depth -= 1
+        if self.depth == 0:
+            self.prog.compiling(time.perf_counter() - self.t0)
 
 
 _RA = options.run_args()
