@@ -85,7 +85,11 @@ def drawing(runs: dict, revs: float) -> Iterator[Callable[[], dict[str, bytes]]]
     with tempfile.TemporaryDirectory(prefix="jointdyn-figures-") as d:
         src, dst, err = Path(d, "runs.pickle"), Path(d, "figures.pickle"), Path(d, "stderr")
         src.write_bytes(pickle.dumps((runs, revs), protocol=pickle.HIGHEST_PROTOCOL))
-        code = f"from {__name__} import _draw; _draw({str(src)!r}, {str(dst)!r}, {os.getpid()})"
+        root = str(Path(__file__).resolve().parents[1])  # this jointdyn, even if not installed
+        code = (
+            f"import sys; sys.path.insert(0, {root!r}); from {__name__} import _draw; "
+            f"_draw({str(src)!r}, {str(dst)!r}, {os.getpid()})"
+        )
         with err.open("wb") as stderr:
             quiet = subprocess.DEVNULL
             proc = subprocess.Popen([sys.executable, "-c", code], stdin=quiet, stdout=quiet, stderr=stderr)
