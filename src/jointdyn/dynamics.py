@@ -272,6 +272,10 @@ def project(t, y, P, tol):
     except that the velocity projection re-uses Φ_q, Φ_t of the last position iterate when that
     iterate converged (they depend on (q, t) only) and nothing is allocated per correction [T191].
 
+    Its scratch is the packed system's workspace ``P.ws``, in the slots :func:`rhs` uses for
+    Φ, Φ_t, γ, Φ_q, the Schur complement and λ (both overwrite them before reading them): no
+    allocation per call [T208].
+
     Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
     m = P.n_rows
     if m == 0:
@@ -279,13 +283,17 @@ def project(t, y, P, tol):
     n = y.shape[0] // 2
     q = y[:n]
     qd = y[n:]
-    minv, cint, creal = P.minv, P.cint, P.creal
-    Phi = np.empty(m)
-    J = np.empty((m, n))
-    Phit = np.empty(m)
-    gam = np.empty(m)
-    S = np.empty((m, m))
-    x = np.empty(m)
+    minv, cint, creal, ws = P.minv, P.cint, P.creal, P.ws
+    o = n  # the layout of rhs / workspace_size: Q (n), Φ, Φ_t, γ (m each), Φ_q (m·n), S (m·m), λ
+    Phi = ws[o : o + m]
+    Phit = ws[o + m : o + 2 * m]
+    gam = ws[o + 2 * m : o + 3 * m]
+    o += 3 * m
+    J = ws[o : o + m * n].reshape((m, n))
+    o += m * n
+    S = ws[o : o + m * m].reshape((m, m))
+    o += m * m
+    x = ws[o : o + m]
     res = 0.0
     fresh = False  # Φ_q, Φ_t evaluated at the current q
     for _ in range(6):
