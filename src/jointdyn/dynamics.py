@@ -19,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from .borrowed import borrowed
 from .forces.elements import NOUT, eval_forces
 from .joints.constraints import eval_constraints
 
@@ -425,15 +426,21 @@ def outputs(ts, ys, mems, P, do_project):
     lam = np.zeros((nt, max(m, 1)))
     eout = np.zeros((nt, nf, NOUT))
     drift = np.zeros((nt, 2))
-    Phi = np.empty(m)
-    J = np.empty((m, n))
-    Phit = np.empty(m)
-    gam = np.empty(m)
-    S = np.empty((m, m))
-    Q = np.empty(n)
+    # the loop works on borrowed views (no reference counting [T208]): of the arguments (owned
+    # by the caller), of the results (returned, hence alive) and of the scratch, which is the
+    # workspace of rhs (Q, Φ, Φ_t, γ, Φ_q, S: written before read)
+    bts, bys, bmems, bP = borrowed((ts, ys, mems, P))
+    bqdd, blam, beout, bdrift = borrowed((qdd, lam, eout, drift))
+    ws = bP.ws
+    Q = ws[:n]
+    Phi = ws[n : n + m]
+    Phit = ws[n + m : n + 2 * m]
+    gam = ws[n + 2 * m : n + 3 * m]
+    J = ws[n + 3 * m : n + 3 * m + m * n].reshape((m, n))
+    S = ws[n + 3 * m + m * n : n + 3 * m + m * n + m * m].reshape((m, m))
     for i in range(nt):
         _sample(
-            ts[i], ys[i, :n], ys[i, n:], mems[i], P, do_project, 1e-12,
-            Phi, J, Phit, gam, S, Q, qdd[i], lam[i], eout[i], drift[i],
+            bts[i], bys[i, :n], bys[i, n:], bmems[i], bP, do_project, 1e-12,
+            Phi, J, Phit, gam, S, Q, bqdd[i], blam[i], beout[i], bdrift[i],
         )  # fmt: skip
     return qdd, lam[:, :m], eout, drift
