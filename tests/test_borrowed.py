@@ -72,3 +72,27 @@ def test_driver_keeps_reference_counts_balanced(nrt_stats):
         assert after.mi_alloc - before.mi_alloc == after.mi_free - before.mi_free
         assert [sys.getrefcount(a) for a in (*w, *P[:7], P.ws, t_out)] == counts
         assert w.stats[1] > 0 and np.isfinite(w.Y).all()
+
+
+def test_step_loop_and_outputs_allocate_nothing_per_step(nrt_stats):
+    """The DOPRI5 loop of a dry run (projection after every accepted step included) and the output
+    samples allocate a fixed number of arrays, independent of the number of steps and samples
+    [T208]: the same count for a run 4× longer."""
+    from jointdyn.dynamics import outputs
+
+    system = _dry()
+    P = system.packed(0.0)
+    counts = []
+    for t_end in (0.005, 0.02):  # 0.02 s: through the first impacts (contact and free flight)
+        t_out = np.linspace(0.0, t_end, 201)
+        w = new_work(DOPRI5, system.y0, system.mem0, 0.0, t_out, 0.0)
+        start(DOPRI5, P, True, w)
+        before = rtsys.get_allocation_stats()
+        drive(DOPRI5, P, t_out, 1e-7, 1e-9, np.inf, 10**6, True, 2**62, w)
+        middle = rtsys.get_allocation_stats()
+        outputs(t_out, w.Y, w.MEM, P, True)
+        after = rtsys.get_allocation_stats()
+        counts.append((middle.alloc - before.alloc, after.alloc - middle.alloc, int(w.stats[1])))
+    (loop_a, out_a, steps_a), (loop_b, out_b, steps_b) = counts
+    assert steps_b > 2 * steps_a  # the longer run takes more steps …
+    assert (loop_a, out_a) == (loop_b, out_b)  # … and allocates no more arrays
