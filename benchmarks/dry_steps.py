@@ -10,8 +10,9 @@ behind docs/theory.md [T201]; no timing (see ``benchmarks.peers`` and ``benchmar
 
 ``--costs`` adds what one call of each piece of the step loop costs [T208–T210]: the right-hand
 side, the projection and the contact hooks, each in a compiled loop on borrowed arrays as the
-driver runs them, at a state in contact and one in free flight (best of 3 × 100,000 calls, wall
-time), and the whole compiled loop per step attempt (CPU, median of 9 runs).
+driver runs them (and the RHS once more on reference-counted arrays), at a state in contact and
+one in free flight (best of 3 × 100,000 calls, wall time), and the whole compiled loop per step
+attempt (CPU, median of 9 runs).
 """
 
 from __future__ import annotations
@@ -68,32 +69,40 @@ def trace(rtol: float, revs: float = 4.0) -> dict:
     return out
 
 
-PIECES = ("rhs", "project", "step limits", "onset test", "peaks", "memory")
+PIECES = ("rhs", "project", "step limits", "onset test", "peaks", "memory", "rhs (counted)")
 
 
-@njit
-def _loop(P0, t, h, y0, y1_0, mem0, f0, piece, calls):
-    """``calls`` calls of one piece of the step loop (index into PIECES) on borrowed arrays, for
-    the step (t, y) → (t + h, y₁)."""
-    P, y, y1, mem, f = borrowed((P0, y0, y1_0, mem0, f0))
-    n = y.shape[0] // 2
-    acc = 0.0
-    for _ in range(calls):
-        if piece == 0:
-            acc += rhs(t, y, mem, P, f)
-        elif piece == 1:
-            y[:] = y1  # the projection of the same unprojected state every call
-            acc += project(t + h, y, P, 1e-12)
-        elif piece == 2:
-            acc += step_limit(y[:n], y[n:], mem, P.fint, P.freal, P.kinds)
-            acc += onset_limit(y[:n], y[n:], f[n:], mem, P.fint, P.freal, P.kinds)
-        elif piece == 3:
-            acc += onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal, P.kinds)
-        elif piece == 4:
-            refine_peaks(y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal, P.kinds)
-        else:
-            acc += advance_memory(t + h, y1[:n], y1[n:], mem, P.fint, P.freal, P.tables, P.kinds)
-    return acc
+def _piece_loop(piece: int):
+    """A compiled loop of ``calls`` calls of one piece of the step loop (index into PIECES) on
+    borrowed arrays, for the step (t, y) → (t + h, y₁); the last piece: the RHS on the caller's
+    reference-counted arrays, as before [T208]. One compiled function per piece, so that no piece
+    changes the code generated for another."""
+
+    @njit
+    def loop(P0, t, h, y0, y1_0, mem0, f0, calls):
+        P, y, y1, mem, f = borrowed((P0, y0, y1_0, mem0, f0))
+        n = y.shape[0] // 2
+        acc = 0.0
+        for _ in range(calls):
+            if piece == 0:
+                acc += rhs(t, y, mem, P, f)
+            elif piece == 1:
+                y[:] = y1  # the projection of the same unprojected state every call
+                acc += project(t + h, y, P, 1e-12)
+            elif piece == 2:
+                acc += step_limit(y[:n], y[n:], mem, P.fint, P.freal, P.kinds)
+                acc += onset_limit(y[:n], y[n:], f[n:], mem, P.fint, P.freal, P.kinds)
+            elif piece == 3:
+                acc += onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal, P.kinds)
+            elif piece == 4:
+                refine_peaks(y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal, P.kinds)
+            elif piece == 5:
+                acc += advance_memory(t + h, y1[:n], y1[n:], mem, P.fint, P.freal, P.tables, P.kinds)
+            else:
+                acc += rhs(t, y0, mem0, P0, f0)
+        return acc
+
+    return loop
 
 
 def costs(rtol: float = 1e-5, calls: int = 100_000) -> dict:
@@ -127,11 +136,12 @@ def costs(rtol: float = 1e-5, calls: int = 100_000) -> dict:
             found[label] = (t, w.ctl[T] - t, y, w.y1.copy(), mem, f)
     for label, (t, h, y, y1, mem, f) in found.items():
         for i, piece in enumerate(PIECES):
-            _loop(P, t, h, y.copy(), y1, mem.copy(), f.copy(), i, 10)
+            loop = _piece_loop(i)
+            loop(P, t, h, y.copy(), y1, mem.copy(), f.copy(), 10)
             best = math.inf
             for _ in range(3):
                 t0 = time.perf_counter()
-                _loop(P, t, h, y.copy(), y1, mem.copy(), f.copy(), i, calls)
+                loop(P, t, h, y.copy(), y1, mem.copy(), f.copy(), calls)
                 best = min(best, time.perf_counter() - t0)
             out[f"{label}: {piece}_ns"] = 1e9 * best / calls
     return out

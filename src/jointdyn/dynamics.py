@@ -275,7 +275,7 @@ def project(t, y, P, tol):
 
     Its scratch is the packed system's workspace ``P.ws``, in the slots :func:`rhs` uses for
     Φ, Φ_t, γ, Φ_q, the Schur complement and λ (both overwrite them before reading them): no
-    allocation per call [T208].
+    allocation per call [T209].
 
     Returns the max |Φ| after projection [m or rad]; −1.0 if the Jacobian is singular."""
     m = P.n_rows
