@@ -3,6 +3,7 @@
 python -m benchmarks.outputs_cost              # perfect slider-crank, 4 rev, 2881 samples
 python -m benchmarks.outputs_cost --joint alshaer2005 --solver ros34pw2
 
+Every loop runs on borrowed arrays, as the driver and ``outputs`` do [T208].
 Also prints the cost of the pieces a projected sample cannot avoid (docs/theory.md [T193]): one
 evaluation of the constraints C (Φ, Φ_q, Φ_t, γ) and one Schur complement with its Cholesky
 factor F, at the same samples, and the floor 1 + (2C + F)/RHS they imply.
@@ -17,6 +18,7 @@ import time
 import numpy as np
 from numba import njit
 
+from jointdyn.borrowed import borrowed
 from jointdyn.dynamics import _schur_into, cholesky_factor, outputs, rhs
 from jointdyn.integrators import SOLVERS
 from jointdyn.joints.constraints import eval_constraints
@@ -27,6 +29,7 @@ from jointdyn.simulate import simulate
 
 @njit(cache=True)
 def _rhs_loop(ts, ys, mems, P, out):
+    ts, ys, mems, P, out = borrowed((ts, ys, mems, P, out))  # as the driver runs it [T208]
     s = 0
     for i in range(ts.shape[0]):
         s += rhs(ts[i], ys[i], mems[i], P, out)
@@ -35,6 +38,7 @@ def _rhs_loop(ts, ys, mems, P, out):
 
 @njit(cache=True)
 def _constraints_loop(ts, ys, P):
+    ts, ys, P = borrowed((ts, ys, P))
     n = ys.shape[1] // 2
     m = P.n_rows
     Phi, J, Phit, gam = np.empty(m), np.empty((m, n)), np.empty(m), np.empty(m)
@@ -47,6 +51,7 @@ def _constraints_loop(ts, ys, P):
 
 @njit(cache=True)
 def _factor_loop(ts, ys, P):
+    ts, ys, P = borrowed((ts, ys, P))
     n = ys.shape[1] // 2
     m = P.n_rows
     Phi, J, Phit, gam, S = np.empty(m), np.empty((m, n)), np.empty(m), np.empty(m), np.empty((m, m))
