@@ -66,3 +66,30 @@ def test_jacobian_and_gamma_by_finite_differences(kind, pair):
         phidd = (phi_at(s) - 2 * phi_at(0.0) + phi_at(-s)) / s**2
         # second difference with s = 1e-4: truncation O(s²)·|Φ''''| ~ 1e-6, round-off ~1e-8
         np.testing.assert_allclose(phidd, J @ qdd - gam, atol=1e-5 * (1 + np.abs(J @ qdd).max()))
+
+
+@pytest.mark.parametrize("kind", list(CONSTRAINTS.values()))
+def test_scratch_trig_gives_the_same_numbers(kind):
+    """eval_constraints_into (the bodies' cos φ, sin φ evaluated once into a scratch array [T223])
+    writes what the wrapper writes, bit for bit, whatever the scratch held before; a revolute's
+    Φ also against its closed form (numpy's sin/cos may differ from libm's in the last bit)."""
+    from jointdyn.joints.constraints import eval_constraints_into
+
+    rng = np.random.default_rng(3)
+    c = make(kind, "a", "b")
+    cint, creal, m = constraint_table([c], INDEX.__getitem__, lambda b, p: POINTS[(b, p)], lambda b: 0.0)
+    q, qd = rng.normal(size=6), rng.normal(size=6)
+    first = [np.empty(m), np.empty((m, 6)), np.empty(m), np.empty(m)]
+    second = [np.empty(m), np.empty((m, 6)), np.empty(m), np.empty(m)]
+    eval_constraints(0.7, q, qd, cint, creal, *first)
+    eval_constraints_into(0.7, q, qd, cint, creal, *second, np.full(6, np.nan))
+    for a, b in zip(first, second):
+        assert np.array_equal(a, b)
+    if kind is Revolute:  # Φ = r_a + A(φ_a) s'_a − r_b − A(φ_b) s'_b  [T1, T5]
+
+        def point(k, s):
+            ca, sa = np.cos(q[3 * k + 2]), np.sin(q[3 * k + 2])
+            return q[3 * k : 3 * k + 2] + np.array([ca * s[0] - sa * s[1], sa * s[0] + ca * s[1]])
+
+        want = point(0, POINTS[("a", "p")]) - point(1, POINTS[("b", "p")])
+        np.testing.assert_allclose(second[0], want, rtol=0, atol=1e-15)  # a few ulp of |q| ~ 1

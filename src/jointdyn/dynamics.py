@@ -21,7 +21,7 @@ from numba import njit
 
 from .borrowed import borrowed
 from .forces.elements import NOUT, eval_forces
-from .joints.constraints import eval_constraints
+from .joints.constraints import eval_constraints, eval_constraints_into
 
 OK = 0
 SINGULAR = 1  # constraint Jacobian lost rank (lock-up or redundant joint)
@@ -80,8 +80,16 @@ def cholesky_solve(S, b):
 
 
 def workspace_size(n: int, m: int, nf: int) -> int:
-    """Length of the float workspace used by :func:`accelerations` and :func:`rhs`."""
-    return n + 3 * m + m * n + m * m + max(m, 1) + nf * NOUT
+    """Length of the float workspace used by :func:`accelerations` and :func:`rhs`; its last n
+    entries are the bodies' cos φ, sin φ of a constraint evaluation (:func:`_trig_scratch`)."""
+    return n + 3 * m + m * n + m * m + max(m, 1) + nf * NOUT + n
+
+
+@njit(inline="always")
+def _trig_scratch(ws, n):
+    """The workspace's last n entries: scratch of ``eval_constraints_into`` [T223], which
+    nothing reads after the evaluation that wrote it."""
+    return ws[ws.shape[0] - n :]
 
 
 @njit(cache=True)
@@ -157,7 +165,7 @@ def _accelerations(t, q, qd, mem, P, qdd, lam, eout):
         J = ws[o : o + m * n].reshape((m, n))
         o += m * n
         S = ws[o : o + m * m].reshape((m, m))
-        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, _trig_scratch(ws, n))
         a = stab[0]
         if a > 0.0:
             _baumgarte(gam, Phi, Phit, J, qd, a, m, n)
@@ -295,10 +303,11 @@ def project(t, y, P, tol):
     S = ws[o : o + m * m].reshape((m, m))
     o += m * m
     x = ws[o : o + m]
+    cs = _trig_scratch(ws, n)
     res = 0.0
     fresh = False  # Φ_q, Φ_t evaluated at the current q
     for _ in range(6):
-        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, cs)
         res = _max_abs(Phi, m)
         if res <= tol:
             fresh = True
@@ -309,7 +318,7 @@ def project(t, y, P, tol):
             return -1.0
         _correct(q, J, x, minv, m, n)
     if not fresh:  # six corrections without convergence: Φ_q at the last corrected q
-        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, cs)
     _velocity_residual(x, J, Phit, qd, m, n)
     _schur_into(S, J, minv, m, n)
     if not cholesky_solve(S, x):
@@ -342,8 +351,9 @@ def constraint_residuals(t, y, P):
 
 
 @njit(cache=True, inline="always")
-def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam, eout, drift):
-    """One output sample (see :func:`outputs`), in place; scratch Phi, J, Phit, gam, S (m rows), Q (n).
+def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, cs, qdd, lam, eout, drift):
+    """One output sample (see :func:`outputs`), in place; scratch Phi, J, Phit, gam, S (m rows),
+    Q, cs (n).
 
     The Schur complement Φ_q M⁻¹Φ_qᵀ at the final q is factored once and serves both the velocity
     projection and the multipliers [T190]; Φ, Φ_q are evaluated once per Gauss–Newton iterate."""
@@ -351,7 +361,7 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
     n = q.shape[0]
     factored = False
     if m > 0:
-        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, cs)
         res = _max_abs(Phi, m)
         if do_project:
             it = 0
@@ -364,7 +374,7 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
                     ok = False
                     break
                 _correct(q, J, lam, minv, m, n)
-                eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+                eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, cs)
                 res = _max_abs(Phi, m)
                 it += 1
             if ok:  # q̇ onto Φ̇ = Φ_t + Φ_q q̇ = 0 with Φ_q at the final q [T11]
@@ -376,7 +386,7 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, qdd, lam
                     _correct(qd, J, lam, minv, m, n)
                     # γ depends on q̇: evaluate it at the projected velocities (Φ, Φ_q, Φ_t are
                     # functions of (q, t) only and come out unchanged) [T190]
-                    eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+                    eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, cs)
         v = 0.0
         for r in range(m):
             s = Phit[r]
@@ -438,9 +448,10 @@ def outputs(ts, ys, mems, P, do_project):
     gam = ws[n + 2 * m : n + 3 * m]
     J = ws[n + 3 * m : n + 3 * m + m * n].reshape((m, n))
     S = ws[n + 3 * m + m * n : n + 3 * m + m * n + m * m].reshape((m, m))
+    cs = _trig_scratch(ws, n)
     for i in range(nt):
         _sample(
             bts[i], bys[i, :n], bys[i, n:], bmems[i], bP, do_project, 1e-12,
-            Phi, J, Phit, gam, S, Q, bqdd[i], blam[i], beout[i], bdrift[i],
+            Phi, J, Phit, gam, S, Q, cs, bqdd[i], blam[i], beout[i], bdrift[i],
         )  # fmt: skip
     return qdd, lam[:, :m], eout, drift

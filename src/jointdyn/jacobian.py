@@ -25,7 +25,7 @@ from .joints.constraints import (
     REVOLUTE,
     ROW,
     TRANSLATIONAL,
-    eval_constraints,
+    eval_constraints_into,
     translational_frame,
 )
 from .kinematics import body_state, point_kinematics
@@ -212,7 +212,8 @@ def system_jacobian_into(t, y, mem, P, Jm, ft, jw):
         o += m * m
         Hs = jw[o : o + 36].reshape((6, 6))
         gq = jw[o + 36 : o + 42]
-        eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam)
+        cs = P.ws[P.ws.shape[0] - n :]  # the workspace's trig scratch (dynamics._trig_scratch) [T223]
+        eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, cs)
         constraint_derivatives(t, q, qd, qdd, lam, cint, creal, Hlam, Dacc, Dvel, Gq, Gqd, gt, Hs, gq)
         for i in range(n):
             for j in range(n):

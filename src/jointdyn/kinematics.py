@@ -27,9 +27,31 @@ def point_kinematics(q, qd, b, xi, eta):
 
     Returns (px, py, sx, sy, vx, vy) [m, m, m, m, m/s, m/s].
     """
-    x, y, phi, xd, yd, phid = body_state(q, qd, b)
-    c = math.cos(phi)
-    s = math.sin(phi)
+    phi = body_state(q, qd, b)[2]
+    return point_kinematics_trig(q, qd, b, xi, eta, math.cos(phi), math.sin(phi))
+
+
+@njit(inline="always")
+def point_kinematics_trig(q, qd, b, xi, eta, c, s):
+    """:func:`point_kinematics` with c = cos φ_b, s = sin φ_b given (evaluated once per body and
+    evaluation, :func:`body_trig`)."""
+    x, y, _, xd, yd, phid = body_state(q, qd, b)
     sx = c * xi - s * eta
     sy = s * xi + c * eta
     return x + sx, y + sy, sx, sy, xd - phid * sy, yd + phid * sx
+
+
+@njit(inline="always")
+def body_trig(q, cs):
+    """cs[3b] = cos φ_b, cs[3b + 1] = sin φ_b for every body b (cs has the length of q)."""
+    for k in range(2, q.shape[0], 3):
+        cs[k - 2] = math.cos(q[k])
+        cs[k - 1] = math.sin(q[k])
+
+
+@njit(inline="always")
+def trig_of(cs, b):
+    """(cos φ_b, sin φ_b) from :func:`body_trig`'s array; (1, 0) for the ground (b = −1)."""
+    if b < 0:
+        return 1.0, 0.0
+    return cs[3 * b], cs[3 * b + 1]

@@ -23,7 +23,7 @@ from typing import ClassVar
 import numpy as np
 from numba import njit
 
-from ..kinematics import body_state, point_kinematics
+from ..kinematics import body_state, body_trig, point_kinematics_trig, trig_of
 from ..layout import BODY_I, BODY_J, ETA_I, ETA_J, HEADER, POINTS, TYPE, XI_I, XI_J, Layout
 
 REVOLUTE = 0
@@ -160,13 +160,20 @@ def _add_point_jac(J, r, col_b, sign, sx, sy):
 def translational_frame(q, qd, bi, bj, row):
     """Geometry of a translational row [T6]: arms s_i, s_j [m], rates ω_i, ω_j [rad/s], the
     world normal n = A_i(ẑ × axis) and B n = ẑ × n [-], d = P_j − P_i [m] and ḋ [m/s]."""
-    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, row[XI_I], row[ETA_I])
-    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, row[XI_J], row[ETA_J])
     phii = body_state(q, qd, bi)[2]
+    phij = body_state(q, qd, bj)[2]
+    return translational_frame_trig(
+        q, qd, bi, bj, row, math.cos(phii), math.sin(phii), math.cos(phij), math.sin(phij)
+    )
+
+
+@njit(inline="always")
+def translational_frame_trig(q, qd, bi, bj, row, ci, si, cj, sj):
+    """:func:`translational_frame` with the bodies' cos φ, sin φ given."""
+    pix, piy, six, siy, vix, viy = point_kinematics_trig(q, qd, bi, row[XI_I], row[ETA_I], ci, si)
+    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics_trig(q, qd, bj, row[XI_J], row[ETA_J], cj, sj)
     wi = body_state(q, qd, bi)[5]
     wj = body_state(q, qd, bj)[5]
-    ci = math.cos(phii)
-    si = math.sin(phii)
     nlx = -row[AXIS_Y]  # local normal n' = ẑ × axis
     nly = row[AXIS_X]
     nx = ci * nlx - si * nly
@@ -177,15 +184,26 @@ def translational_frame(q, qd, bi, bj, row):
 @njit(cache=True)
 def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
     """Fill Φ, Φ_q (J, zeroed here), Φ_t and γ with Φ_q q̈ = γ [T4–T7]."""
+    eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, np.empty(q.shape[0]))
+
+
+@njit(cache=True)
+def eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, cs):
+    """:func:`eval_constraints` with scratch ``cs`` (length of q) for the bodies' cos φ, sin φ,
+    evaluated once per body instead of once per constraint touching it [T223]."""
     J[:, :] = 0.0
+    body_trig(q, cs)
     for k in range(cint.shape[0]):
         typ = cint[k, TYPE]
         bi = cint[k, BODY_I]
         bj = cint[k, BODY_J]
         r = cint[k, ROW]
         if typ == REVOLUTE:
-            pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, creal[k, XI_I], creal[k, ETA_I])
-            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, creal[k, XI_J], creal[k, ETA_J])
+            ci, si = trig_of(cs, bi)
+            cj, sj = trig_of(cs, bj)
+            row = creal[k]
+            pix, piy, six, siy, vix, viy = point_kinematics_trig(q, qd, bi, row[XI_I], row[ETA_I], ci, si)
+            pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics_trig(q, qd, bj, row[XI_J], row[ETA_J], cj, sj)
             wi = body_state(q, qd, bi)[5]
             wj = body_state(q, qd, bj)[5]
             Phi[r] = pix - pjx
@@ -199,8 +217,10 @@ def eval_constraints(t, q, qd, cint, creal, Phi, J, Phit, gam):
             gam[r + 1] = wi * wi * siy - wj * wj * sjy
         elif typ == TRANSLATIONAL:
             # n = A_i(ẑ × axis), Bn = ẑ × n, d = P_j − P_i  [T6]
-            six, siy, sjx, sjy, wi, wj, nx, ny, bnx, bny, dx, dy, ddx, ddy = translational_frame(
-                q, qd, bi, bj, creal[k]
+            ci, si = trig_of(cs, bi)
+            cj, sj = trig_of(cs, bj)
+            six, siy, sjx, sjy, wi, wj, nx, ny, bnx, bny, dx, dy, ddx, ddy = translational_frame_trig(
+                q, qd, bi, bj, creal[k], ci, si, cj, sj
             )
             phii = body_state(q, qd, bi)[2]
             phij = body_state(q, qd, bj)[2]
