@@ -27,6 +27,7 @@ from .integrators.common import (
     STEP_TOO_SMALL,
 )
 from .integrators.driver import IOUT, METHODS, RUNNING, T, drive, method_tolerances, new_work
+from .integrators.weights import clearance_scale
 from .results import Results
 from .system import System
 
@@ -85,9 +86,10 @@ def _element_hint(system: System, P, t, y, mem) -> str:
     return ("; " + "; ".join(hints)) if hints else ""
 
 
-def _force_resolution_message(system: System, ts, Y, MEM, eout, P, config) -> str:
-    """'' if every element force is resolved by the tolerances [T111], else why not."""
-    worst = check_force_resolution(ts, Y, MEM, eout, P, config.rtol, config.atol)
+def _force_resolution_message(system: System, ts, Y, MEM, eout, P, config, ysc=None) -> str:
+    """'' if every element force is resolved by the tolerances [T111], else why not (``ysc``: the
+    error test's fixed scales, [T186])."""
+    worst = check_force_resolution(ts, Y, MEM, eout, P, config.rtol, config.atol, ysc=ysc)
     if worst is None:
         return ""
     k, dF, peak, t = worst
@@ -114,6 +116,7 @@ def _force_resolution_message(system: System, ts, Y, MEM, eout, P, config) -> st
 
 
 JACOBIANS = ("finite-differences", "exact")
+ERROR_SCALES = ("state", "clearance")
 
 
 @dataclass(frozen=True)
@@ -143,6 +146,11 @@ class SimConfig:
     """system Jacobian of the compiled stiff solvers (rodas4, ros34pw2, radau5): ``exact`` (chain
     rule through the elements' exact Jacobians [T98–T104]; elements without one are differenced,
     with a warning naming them) or ``finite-differences`` (forward differences, the reference)"""
+    error_scale: str = "state"
+    """what rtol is relative to in the error test of the compiled stiff solvers: ``state``
+    (atol + rtol·|y_i|, every solver) or ``clearance`` (atol + rtol·Y_i with fixed scales from the
+    smallest journal clearance, [T186]: rtol is then a fraction of the clearance; needs a journal
+    element and rodas4, ros34pw2 or radau5)"""
 
     def __post_init__(self):
         if not (math.isfinite(self.t_end) and self.t_end > 0):
@@ -161,6 +169,10 @@ class SimConfig:
             raise ValueError(f"SimConfig.max_step = {self.max_step!r} [s]: must be > 0")
         if self.baumgarte is not None and not (math.isfinite(self.baumgarte) and self.baumgarte >= 0):
             raise ValueError(f"SimConfig.baumgarte = {self.baumgarte!r} [1/s]: must be ≥ 0")
+        if self.error_scale not in ERROR_SCALES:
+            raise ValueError(
+                f"SimConfig.error_scale = {self.error_scale!r}: unknown; valid: {list(ERROR_SCALES)}"
+            )
         if self.jacobian not in JACOBIANS:
             raise ValueError(f"SimConfig.jacobian = {self.jacobian!r}: unknown; valid: {list(JACOBIANS)}")
 
@@ -175,9 +187,10 @@ def resolve_solver(system: System, name: str) -> str:
     return "radau5" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
 
 
-def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget):
+def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget, ysc=None):
     """Drive a compiled solver in slices of bounded wall time; returns (Work, status)."""
-    w = new_work(method, y0, mem0, t_out[0], t_out, config.first_step, config.jacobian == "exact")
+    exact = config.jacobian == "exact"
+    w = new_work(method, y0, mem0, t_out[0], t_out, config.first_step, exact, ysc)
     rtol, atol = method_tolerances(method, config.rtol, config.atol)
     budget = int(step_budget) if step_budget else 16
     status = RUNNING  # the first call of drive() starts the integration (one compiled call less)
@@ -255,9 +268,18 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
                 f"jacobian='exact': no exact Jacobian for elements {fd}; they are differenced numerically",
                 stacklevel=3,
             )
+    ysc = None
+    if config.error_scale == "clearance":
+        if solver not in ("rodas4", "ros34pw2", "radau5"):
+            raise ValueError(
+                f"SimConfig.error_scale = 'clearance' needs solver rodas4, ros34pw2 or radau5, not {solver!r}"
+            )
+        ysc = clearance_scale(system, config.t_end)
     t0 = time.perf_counter()
     if solver in METHODS:
-        w, status = _integrate_compiled(METHODS[solver], P, y0, mem0, config, t_out, progress, step_budget)
+        w, status = _integrate_compiled(
+            METHODS[solver], P, y0, mem0, config, t_out, progress, step_budget, ysc
+        )
         nw, stats = int(w.ictl[IOUT]), w.stats
         Y, MEM = w.Y[:nw], w.MEM[:nw]
         t_reached, y_fin, mem_fin = float(w.ctl[T]), w.y, w.mem
@@ -295,7 +317,7 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
         status = INTERRUPTED
     unresolved = ""
     if status == OK:
-        unresolved = _force_resolution_message(system, ts, Y, MEM, eout, P, config)
+        unresolved = _force_resolution_message(system, ts, Y, MEM, eout, P, config, ysc)
         if unresolved:
             status = FORCE_UNRESOLVED
     res = Results(

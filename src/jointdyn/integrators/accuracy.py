@@ -27,8 +27,9 @@ FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.
 
 
 @njit(cache=True)
-def force_resolution(t, y, mem, P, rtol, atol, dF):
-    """δF_k [N] of every element at (t, y) into dF (nf,) [T111]."""
+def force_resolution(t, y, mem, P, rtol, atol, dF, ysc=None):
+    """δF_k [N] of every element at (t, y) into dF (nf,) [T111]; ``ysc``: the error test's
+    fixed scales (None or 0: |y_j|) [T186]."""
     fint, freal, tables = P.fint, P.freal, P.tables
     nn = y.shape[0]
     n = nn // 2
@@ -40,7 +41,11 @@ def force_resolution(t, y, mem, P, rtol, atol, dF):
     yp = y.copy()
     dF[:] = 0.0
     for j in range(nn):
-        yp[j] = y[j] + (atol + rtol * abs(y[j]))
+        s = abs(y[j])
+        if ysc is not None:
+            if ysc[j] > 0.0:
+                s = ysc[j]
+        yp[j] = y[j] + (atol + rtol * s)
         Q[:] = 0.0
         eval_forces(t, yp[:n], yp[n:], mem, fint, freal, tables, Q, out1, P.kinds)
         for k in range(nf):
@@ -49,18 +54,19 @@ def force_resolution(t, y, mem, P, rtol, atol, dF):
 
 
 @njit(cache=True)
-def film_gap_unresolved(q, qd, P, rtol, atol):
+def film_gap_unresolved(q, qd, P, rtol, atol, qsc):
     """0, or FILM_BREAKDOWN + k for the first journal bearing without a contact law whose minimum
     film thickness h_min = c − |e| [m] is not larger than the change of |e| a state error at the
-    tolerances can make, Σ_j |δ(q + s_j e_j) − δ(q)| with s_j = atol + rtol·|q_j| [T115]: the
+    tolerances can make, Σ_j |δ(q + s_j e_j) − δ(q)| with s_j = atol + rtol·|q_j| [T115] (or
+    rtol·qsc_j where the error test's fixed scale qsc_j > 0, [T186]; qsc may be empty): the
     integration then cannot tell the film from ξ ≥ 1 (breakdown). rtol = 0: no check."""
     if rtol <= 0.0:
         return 0
-    return _film_gap_gate(P.kinds, q, qd, P.fint, P.freal, rtol, atol)  # 0 without journals [T175]
+    return _film_gap_gate(P.kinds, q, qd, P.fint, P.freal, rtol, atol, qsc)  # 0 without journals [T175]
 
 
 @njit(inline="always")
-def _film_gap(q, qd, fint, freal, rtol, atol):
+def _film_gap(q, qd, fint, freal, rtol, atol, qsc):
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] != NO_CONTACT:
             continue
@@ -69,7 +75,8 @@ def _film_gap(q, qd, fint, freal, rtol, atol):
         qp = q.copy()
         spread = 0.0
         for j in range(q.shape[0]):
-            qp[j] = q[j] + (atol + rtol * abs(q[j]))
+            s = qsc[j] if j < qsc.shape[0] and qsc[j] > 0.0 else abs(q[j])
+            qp[j] = q[j] + (atol + rtol * s)
             d1, _ = penetration(qp, qd, bi, bj, freal[k])
             spread += abs(d1 - d0)
             qp[j] = q[j]
@@ -79,19 +86,19 @@ def _film_gap(q, qd, fint, freal, rtol, atol):
 
 
 _film_gap_gate = kind_gate(
-    "film_gap_gate", JOURNAL, _film_gap, ("q", "qd", "fint", "freal", "rtol", "atol"), "0"
+    "film_gap_gate", JOURNAL, _film_gap, ("q", "qd", "fint", "freal", "rtol", "atol", "qsc"), "0"
 )
 
 
 @njit(cache=True)
-def worst_resolution(ts, ys, mems, P, rtol, atol, idx):
+def worst_resolution(ts, ys, mems, P, rtol, atol, idx, ysc):
     """Over the samples ``idx``: (largest δF_k [N], sample index where it occurs) per element."""
     nf = P.fint.shape[0]
     worst = np.zeros(nf)
     where = np.zeros(nf, dtype=np.int64)
     dF = np.zeros(nf)
     for i in idx:
-        force_resolution(ts[i], ys[i], mems[i], P, rtol, atol, dF)
+        force_resolution(ts[i], ys[i], mems[i], P, rtol, atol, dF, ysc)
         for k in range(nf):
             if dF[k] > worst[k]:
                 worst[k] = dF[k]
@@ -99,11 +106,11 @@ def worst_resolution(ts, ys, mems, P, rtol, atol, idx):
     return worst, where
 
 
-def check_force_resolution(ts, ys, mems, eout, P, rtol, atol, n_check: int = 64):
+def check_force_resolution(ts, ys, mems, eout, P, rtol, atol, n_check: int = 64, ysc=None):
     """(element index, δF [N], peak |F| [N], time [s]) of the journal element (film, clearance
     contact) whose force is least resolved relative to its peak, checked at ``n_check`` evenly
     spaced samples and at each element's largest-force sample; None if there is no journal
-    element or no sample."""
+    element or no sample. ``ysc``: the error test's fixed scales (None: |y_j|) [T186]."""
     nt, nf = eout.shape[0], eout.shape[1]
     if nt == 0 or nf == 0:
         return None
@@ -112,7 +119,8 @@ def check_force_resolution(ts, ys, mems, eout, P, rtol, atol, n_check: int = 64)
         return None
     F = np.hypot(eout[:, :, FX], eout[:, :, FY])
     idx = np.unique(np.concatenate([np.linspace(0, nt - 1, min(n_check, nt)).astype(np.int64), F.argmax(0)]))
-    worst, where = worst_resolution(ts, ys, mems, P, rtol, atol, idx)
+    scale = np.zeros(ys.shape[1]) if ysc is None else ysc  # 0: |y_j|
+    worst, where = worst_resolution(ts, ys, mems, P, rtol, atol, idx, scale)
     peak = F.max(0)
     ratio = np.where(peak > 0, worst / np.where(peak > 0, peak, 1.0), 0.0)  # unloaded: nothing to resolve
     ratio = np.where(journal, ratio, -1.0)

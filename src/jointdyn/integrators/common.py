@@ -33,6 +33,19 @@ def error_norm(err, y0, y1, rtol, atol):
 
 
 @njit(cache=True)
+def error_norm_scaled(err, y0, y1, rtol, atol, ysc):
+    """:func:`error_norm` with a fixed scale ysc_i > 0 [SI of component i] in place of
+    max(|y0_i|, |y1_i|) where given (ysc_i = 0: that max, the same arithmetic) [T186]."""
+    s = 0.0
+    n = err.shape[0]
+    for i in range(n):
+        sc = atol + rtol * (ysc[i] if ysc[i] > 0.0 else max(abs(y0[i]), abs(y1[i])))
+        e = err[i] / sc
+        s += e * e
+    return np.sqrt(s / n)
+
+
+@njit(cache=True)
 def hermite(y0, f0, y1, f1, h, th, out):
     """Cubic Hermite interpolation on [t, t+h] at fraction th (4th-order accurate state)."""
     h00 = (1.0 + 2.0 * th) * (1.0 - th) ** 2
@@ -56,9 +69,10 @@ def write_dense(t0, y0, f0, t1, y1, f1, mem, t_out, iout, Y, MEM):
 
 
 @njit(cache=True)
-def accept_hooks(t, y, mem, P, do_project, rtol=0.0, atol=0.0):
+def accept_hooks(t, y, mem, P, do_project, rtol=0.0, atol=0.0, ysc=None):
     """After an accepted step: project on the constraints, then update element memory; with
-    the error test's (rtol, atol), also stop on a film gap the tolerances do not resolve [T115]."""
+    the error test's (rtol, atol) and its fixed scales ``ysc`` (None or 0: |y_i|, [T186]), also
+    stop on a film gap the tolerances do not resolve [T115]."""
     if do_project and P.n_rows > 0:
         if project(t, y, P, 1e-12) < 0.0:
             return PROJECTION_FAILED
@@ -67,7 +81,9 @@ def accept_hooks(t, y, mem, P, do_project, rtol=0.0, atol=0.0):
     st = advance_memory(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables, P.kinds)
     if st != OK:
         return st
-    return film_gap_unresolved(y[:n], y[n:], P, rtol, atol)
+    if ysc is None:
+        return film_gap_unresolved(y[:n], y[n:], P, rtol, atol, y[:0])
+    return film_gap_unresolved(y[:n], y[n:], P, rtol, atol, ysc[:n])
 
 
 @njit(cache=True)

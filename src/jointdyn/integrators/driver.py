@@ -88,12 +88,16 @@ class Work(NamedTuple):
     err: np.ndarray
     gk: np.ndarray
     jw: np.ndarray  # scratch of the exact Jacobian (jacobian.system_jacobian_into)
+    ysc: np.ndarray  # stiff methods: fixed error scales (> 0) replacing |y_i| (0: |y_i|) [T186]
 
 
-def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian: bool = False) -> Work:
+def new_work(
+    method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian: bool = False, ysc=None
+) -> Work:
     """Work arrays for integrating from (t0, y0, mem0); outputs at or before t0 are filled.
     ``exact_jacobian``: the stiff methods use :func:`jointdyn.jacobian.system_jacobian` (one
-    force evaluation, counted as one RHS evaluation) instead of forward differences."""
+    force evaluation, counted as one RHS evaluation) instead of forward differences. ``ysc``
+    (nn,): fixed error scales of the stiff methods (``weights.clearance_scale``; None: |y_i|)."""
     nn = y0.shape[0]
     nout = t_out.shape[0]
     Y = np.zeros((nout, nn))
@@ -141,6 +145,7 @@ def new_work(method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian:
         gk=np.zeros(nn),
         # m ≤ n constraint rows for a non-singular system (a longer scratch is made if needed)
         jw=np.zeros(jacobian_work_size(nn // 2, nn // 2, mem0.shape[0]) if exact_jacobian else 1),
+        ysc=np.zeros(nn) if ysc is None or method == DOPRI5 else np.asarray(ysc, dtype=float).copy(),
     )
 
 
@@ -298,7 +303,7 @@ def _entry(METHOD: int, EXACT: int):
             t = t_new
             stats[1] += 1
             ictl[AGE] += 1
-            st = accept_hooks(t, y, mem, P, do_project, rtol, atol)
+            st = accept_hooks(t, y, mem, P, do_project, rtol, atol, w.ysc)
             if st != OK:
                 status = st
                 break

@@ -116,9 +116,9 @@ def attempt_radau5(t, h, P, w, rtol, atol):
     w.ctl[HHFAC])."""
     y, y1, mem, K, ctl, ictl = w.y, w.y1, w.mem, w.K, w.ctl, w.ictl
     nn = y.shape[0]
-    scal = w.err
+    scal, ysc = w.err, w.ysc
     for i in range(nn):
-        scal[i] = atol + rtol * abs(y[i])
+        scal[i] = atol + rtol * (ysc[i] if ysc[i] > 0.0 else abs(y[i]))  # [T114], [T186]
     if ctl[H_LU] != h:
         w.stats[4] += 1
         if not _factor(h, w):

@@ -17,7 +17,7 @@ import numpy as np
 from numba import njit
 
 from ..dynamics import rhs
-from .common import error_norm
+from .common import error_norm_scaled
 
 GAMMA = 0.25
 A = np.array(
@@ -183,4 +183,4 @@ def attempt_rodas4(t, h, P, w, rtol, atol):
         y1[i] = yt[i] + K[5, i]
     if bad != 0:
         return 2, np.inf
-    return 0, error_norm(K[5], y, y1, rtol, atol)
+    return 0, error_norm_scaled(K[5], y, y1, rtol, atol, w.ysc)

@@ -15,7 +15,7 @@ import numpy as np
 from numba import njit
 
 from ..dynamics import rhs
-from .common import error_norm
+from .common import error_norm_scaled
 from .rodas4 import lu_factor, lu_solve
 
 GAMMA = 4.3586652150845900e-01
@@ -87,4 +87,4 @@ def attempt_ros34pw2(t, h, P, w, rtol, atol):
         )
     if bad != 0:
         return 2, np.inf
-    return 0, error_norm(err, y, y1, rtol, atol)
+    return 0, error_norm_scaled(err, y, y1, rtol, atol, w.ysc)
