@@ -1,6 +1,7 @@
 """Work–precision of the stiff solvers on the lubricated slider-crank, one run, one process.
 
-Usage: ``python -m benchmarks.work_precision [--quick] [--repeat N] [--clearances 0.5,0.05]``
+Usage: ``python -m benchmarks.work_precision [--quick] [--repeat N] [--clearances 0.5,0.05]
+[--error-scale state|clearance]``
 
 Per clearance (π-film pin, 4 crank revolutions, 2881 samples as in the README) and per solver
 — ``radau5``, ``rodas4``, ``ros34pw2`` with the exact system Jacobian, ``scipy-radau`` (compiled
@@ -44,6 +45,13 @@ LADDER = {
     "ros34pw2": (1e-6, 1e-7, 1e-8, 1e-9),
     "scipy-radau": (1e-5, 1e-6, 1e-7, 1e-8),
 }
+# --error-scale clearance [T186]: rtol is a fraction of the clearance (≈ 500× the state-relative
+# rtol for the same error at c = 0.5 mm), atol 1e-14 (below every rtol·Y_i of the ladders)
+LADDER_CLEARANCE = {
+    "radau5": (1e-4, 3e-5, 1e-5, 3e-6, 1e-6),
+    "rodas4": (1e-4, 1e-5, 1e-6, 1e-7),
+    "ros34pw2": (1e-4, 1e-5, 1e-6, 1e-7),
+}
 QUICK = {"radau5": (1e-6, 1e-7), "rodas4": (1e-7,), "ros34pw2": (1e-7,), "scipy-radau": (1e-7,)}
 TARGETS = (1e-3, 1e-4, 1e-5)  # accuracies |ΔM|/peak at which solvers are compared
 
@@ -55,9 +63,16 @@ def _system(c_mm: float):
         return slider_crank(**kw).compile()
 
 
-def _config(solver: str, rtol: float, atol_ratio: float = 1e-3) -> SimConfig:
+def _config(solver: str, rtol: float, atol_ratio: float = 1e-3, scale: str = "state") -> SimConfig:
+    atol = rtol * atol_ratio if scale == "state" else 1e-14
     return SimConfig(
-        t_end=T_END, n_out=N_OUT, solver=solver, rtol=rtol, atol=rtol * atol_ratio, jacobian="exact"
+        t_end=T_END,
+        n_out=N_OUT,
+        solver=solver,
+        rtol=rtol,
+        atol=atol,
+        jacobian="exact",
+        error_scale=scale,
     )
 
 
@@ -134,8 +149,8 @@ def _run(system, cfg):
         return err.results, "unresolved"
 
 
-def row(system, Mr, solver, rtol, repeat):
-    cfg = _config(solver, rtol)
+def row(system, Mr, solver, rtol, repeat, scale="state"):
+    cfg = _config(solver, rtol, scale=scale)
     _run(system, cfg)  # JIT warm-up
     times, res, note = [], None, ""
     for _ in range(repeat):
@@ -189,8 +204,13 @@ def main(argv=None):
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--quick", action="store_true", help="two radau5 points and one of each other")
     ap.add_argument("--solvers", default=",".join(LADDER))
+    ap.add_argument(
+        "--error-scale", default="state", choices=("state", "clearance"), help="SimConfig.error_scale [T186]"
+    )
     a = ap.parse_args(argv)
     ladder = QUICK if a.quick else LADDER
+    if a.error_scale == "clearance":
+        ladder = LADDER_CLEARANCE
     result = {}
     for c in (float(x) for x in a.clearances.split(",")):
         system = _system(c)
@@ -201,7 +221,7 @@ def main(argv=None):
         rows = []
         for solver in a.solvers.split(","):
             for rtol in ladder[solver]:
-                rows.append(row(system, Mr, solver, rtol, 1 if a.quick else a.repeat))
+                rows.append(row(system, Mr, solver, rtol, 1 if a.quick else a.repeat, a.error_scale))
                 print(f"  done c={c} {solver} rtol={rtol:g}", file=sys.stderr)
         print(
             f"\nc = {c:g} mm (reference rodas4 rtol 1e-11; radau5 rtol 1e-12 differs by {ref_err:.1e}); "
