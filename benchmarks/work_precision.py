@@ -50,7 +50,7 @@ LADDER = {
 LADDER_CLEARANCE = {
     "radau5": (1e-4, 3e-5, 1e-5, 3e-6, 1e-6),
     "rodas4": (1e-4, 1e-5, 1e-6, 1e-7),
-    "ros34pw2": (1e-4, 1e-5, 1e-6, 1e-7),
+    "ros34pw2": (1e-4, 3e-5, 1e-5, 1e-6, 1e-7),
 }
 QUICK = {"radau5": (1e-6, 1e-7), "rodas4": (1e-7,), "ros34pw2": (1e-7,), "scipy-radau": (1e-7,)}
 TARGETS = (1e-3, 1e-4, 1e-5)  # accuracies |ΔM|/peak at which solvers are compared
