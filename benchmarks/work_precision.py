@@ -46,8 +46,8 @@ LADDER = {
     "scipy-radau": (1e-5, 1e-6, 1e-7, 1e-8),
 }
 # --error-scale clearance [T186]: rtol is a fraction of the clearance (≈ 30× the state-relative
-# rtol for the same error at c = 0.5 mm, ≈ 500× at 0.05 mm), atol 1e-14 (below every rtol·Y_i of the ladders); scipy's
-# Radau (its own error norm) keeps the state scales
+# rtol for the same error at c = 0.5 mm, ≈ 500× at 0.05 mm), atol 1e-14 (below every rtol·Y_i of
+# the ladders); scipy's Radau (its own error norm) keeps the state scales
 LADDER_CLEARANCE = {
     "radau5": (1e-4, 3e-5, 1e-5, 3e-6, 1e-6),
     "rodas4": (1e-4, 1e-5, 1e-6, 1e-7),
