@@ -106,7 +106,11 @@ def test_journal_relative_velocity_matches_finite_differences():
     # at h = T/3600 the measured difference is 5e-4 (ex) and 4e-5 (ey) of the peak rate
     err = {}
     for spr in (1800, 3600):
-        res, _, _ = run_slider_crank("alshaer2005", 1.0, samples_per_rev=spr, rtol=1e-8, atol=1e-12)
+        # radau5 named: state error scales ([T186]), whose tolerance-level noise is the one measured
+        # above (auto's clearance scales at 300·rtol [T188] leave more)
+        res, _, _ = run_slider_crank(
+            "alshaer2005", 1.0, samples_per_rev=spr, solver="radau5", rtol=1e-8, atol=1e-12
+        )
         st = journal_relative_state(res, "piston_pin")
         assert np.allclose(st["ex"], res.element("piston_pin", "ex"), atol=1e-15)
         for k in ("ex", "ey"):

@@ -10,7 +10,7 @@ from test_integrators import oscillator
 from jointdyn import post
 from jointdyn.integrators.accuracy import force_resolution
 from jointdyn.integrators.common import error_norm, error_norm_scaled
-from jointdyn.integrators.weights import clearance_scale
+from jointdyn.integrators.weights import AUTO_CLEARANCE_RATIO, clearance_scale
 from jointdyn.models.slider_crank import CRANK_LENGTH, ROD_LENGTH, SPEED, slider_crank
 from jointdyn.simulate import SimConfig, simulate
 
@@ -60,6 +60,21 @@ def test_force_resolution_uses_the_fixed_scales():
     s = atol + rtol * 2.0
     # second-order terms ≈ k·s²/L ≈ 1e4·(2e-6)²/0.1 = 4e-7 N against 0.2 N
     assert dF[0] == pytest.approx(k * s + d * s + tension * s / x, rel=1e-5)
+
+
+def test_auto_is_clearance_at_300_rtol_for_the_auto_solver_only():
+    """error_scale="auto" (the default) = clearance scales at 300·rtol when solver="auto" picks
+    radau5 [T188]: the same run step for step; an explicit solver keeps the state scales."""
+    s = _system()
+    t_end = 0.25 * 2 * math.pi / SPEED
+    auto = simulate(s, SimConfig(t_end=t_end, n_out=181))
+    clr = simulate(s, SimConfig(t_end=t_end, n_out=181, solver="radau5", rtol=3e-6, error_scale="clearance"))
+    assert AUTO_CLEARANCE_RATIO * 1e-8 == pytest.approx(3e-6, rel=1e-15)
+    assert auto.stats == clr.stats and np.array_equal(auto.y, clr.y)
+    explicit = simulate(s, SimConfig(t_end=t_end, n_out=181, solver="radau5"))
+    state = simulate(s, SimConfig(t_end=t_end, n_out=181, solver="radau5", error_scale="state"))
+    assert explicit.stats == state.stats and np.array_equal(explicit.y, state.y)
+    assert explicit.stats != auto.stats
 
 
 def test_bad_error_scale_requests():

@@ -27,7 +27,7 @@ from .integrators.common import (
     STEP_TOO_SMALL,
 )
 from .integrators.driver import IOUT, METHODS, RUNNING, T, drive, method_tolerances, new_work
-from .integrators.weights import clearance_scale
+from .integrators.weights import AUTO_CLEARANCE_RATIO, clearance_scale
 from .results import Results
 from .system import System
 
@@ -86,10 +86,11 @@ def _element_hint(system: System, P, t, y, mem) -> str:
     return ("; " + "; ".join(hints)) if hints else ""
 
 
-def _force_resolution_message(system: System, ts, Y, MEM, eout, P, config, ysc=None) -> str:
-    """'' if every element force is resolved by the tolerances [T111], else why not (``ysc``: the
-    error test's fixed scales, [T186])."""
-    worst = check_force_resolution(ts, Y, MEM, eout, P, config.rtol, config.atol, ysc=ysc)
+def _force_resolution_message(system: System, ts, Y, MEM, eout, P, config, ysc=None, rtol=None) -> str:
+    """'' if every element force is resolved by the tolerances [T111], else why not (``ysc``,
+    ``rtol``: the error test's fixed scales and rtol, [T186]; the advice is in config.rtol)."""
+    rtol = config.rtol if rtol is None else rtol
+    worst = check_force_resolution(ts, Y, MEM, eout, P, rtol, config.atol, ysc=ysc)
     if worst is None:
         return ""
     k, dF, peak, t = worst
@@ -116,7 +117,7 @@ def _force_resolution_message(system: System, ts, Y, MEM, eout, P, config, ysc=N
 
 
 JACOBIANS = ("finite-differences", "exact")
-ERROR_SCALES = ("state", "clearance")
+ERROR_SCALES = ("auto", "state", "clearance")
 
 
 @dataclass(frozen=True)
@@ -131,7 +132,7 @@ class SimConfig:
     """a name in ``jointdyn.integrators.SOLVERS``, or ``"auto"``: ``radau5`` when the system has a
     lubricated journal bearing (stiff film), else ``dopri5`` [T116]"""
     rtol: float = 1e-8
-    """relative tolerance [-]"""
+    """relative tolerance [-] (relative to what: ``error_scale``)"""
     atol: float = 1e-10
     """absolute tolerance, applied to every state component [SI of the component]"""
     max_step: float = math.inf
@@ -146,11 +147,13 @@ class SimConfig:
     """system Jacobian of the compiled stiff solvers (rodas4, ros34pw2, radau5): ``exact`` (chain
     rule through the elements' exact Jacobians [T98–T104]; elements without one are differenced,
     with a warning naming them) or ``finite-differences`` (forward differences, the reference)"""
-    error_scale: str = "state"
-    """what rtol is relative to in the error test of the compiled stiff solvers: ``state``
-    (atol + rtol·|y_i|, every solver) or ``clearance`` (atol + rtol·Y_i with fixed scales from the
-    smallest journal clearance, [T186]: rtol is then a fraction of the clearance; needs a journal
-    element and rodas4, ros34pw2 or radau5)"""
+    error_scale: str = "auto"
+    """what rtol is relative to in the error test: ``state`` (atol + rtol·|y_i|), ``clearance``
+    (atol + rtol·Y_i with fixed scales from the smallest journal clearance, [T186]: rtol is a
+    fraction of the clearance; needs a journal element and rodas4, ros34pw2 or radau5) or ``auto``:
+    when ``solver="auto"`` picks radau5 (a lubricated bearing), clearance scales at
+    ``AUTO_CLEARANCE_RATIO`` (300) × rtol — rtol = 1e-8 is 3e-6 of the clearance, [T188] — else
+    ``state``"""
 
     def __post_init__(self):
         if not (math.isfinite(self.t_end) and self.t_end > 0):
@@ -187,11 +190,12 @@ def resolve_solver(system: System, name: str) -> str:
     return "radau5" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
 
 
-def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget, ysc=None):
-    """Drive a compiled solver in slices of bounded wall time; returns (Work, status)."""
+def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget, ysc=None, rtol=None):
+    """Drive a compiled solver in slices of bounded wall time; returns (Work, status). ``ysc``,
+    ``rtol``: fixed error scales and the rtol they go with (None: |y_i| and config.rtol) [T186]."""
     exact = config.jacobian == "exact"
     w = new_work(method, y0, mem0, t_out[0], t_out, config.first_step, exact, ysc)
-    rtol, atol = method_tolerances(method, config.rtol, config.atol)
+    rtol, atol = method_tolerances(method, config.rtol if rtol is None else rtol, config.atol)
     budget = int(step_budget) if step_budget else 16
     status = RUNNING  # the first call of drive() starts the integration (one compiled call less)
     while status == OK or status == RUNNING:
@@ -268,17 +272,19 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
                 f"jacobian='exact': no exact Jacobian for elements {fd}; they are differenced numerically",
                 stacklevel=3,
             )
-    ysc = None
+    ysc, rtol = None, config.rtol
     if config.error_scale == "clearance":
         if solver not in ("rodas4", "ros34pw2", "radau5"):
             raise ValueError(
                 f"SimConfig.error_scale = 'clearance' needs solver rodas4, ros34pw2 or radau5, not {solver!r}"
             )
         ysc = clearance_scale(system, config.t_end)
+    elif config.error_scale == "auto" and config.solver == "auto" and solver == "radau5":
+        ysc, rtol = clearance_scale(system, config.t_end), AUTO_CLEARANCE_RATIO * config.rtol  # [T188]
     t0 = time.perf_counter()
     if solver in METHODS:
         w, status = _integrate_compiled(
-            METHODS[solver], P, y0, mem0, config, t_out, progress, step_budget, ysc
+            METHODS[solver], P, y0, mem0, config, t_out, progress, step_budget, ysc, rtol
         )
         nw, stats = int(w.ictl[IOUT]), w.stats
         Y, MEM = w.Y[:nw], w.MEM[:nw]
@@ -317,7 +323,7 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
         status = INTERRUPTED
     unresolved = ""
     if status == OK:
-        unresolved = _force_resolution_message(system, ts, Y, MEM, eout, P, config, ysc)
+        unresolved = _force_resolution_message(system, ts, Y, MEM, eout, P, config, ysc, rtol)
         if unresolved:
             status = FORCE_UNRESOLVED
     res = Results(
