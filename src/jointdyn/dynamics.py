@@ -86,6 +86,23 @@ def workspace_size(n: int, m: int, nf: int) -> int:
 
 
 @njit(inline="always")
+def _constraint_views(ws, n, m):
+    """The workspace's constraint slots (after Q, n entries): Φ, Φ_t, γ (m each), Φ_q (m×n),
+    the Schur complement S (m×m) and the m entries after it (λ in :func:`rhs`, scratch in
+    :func:`project`) — the one place the layout of :func:`workspace_size` is carved."""
+    o = n
+    Phi = ws[o : o + m]
+    Phit = ws[o + m : o + 2 * m]
+    gam = ws[o + 2 * m : o + 3 * m]
+    o += 3 * m
+    J = ws[o : o + m * n].reshape((m, n))
+    o += m * n
+    S = ws[o : o + m * m].reshape((m, m))
+    o += m * m
+    return Phi, Phit, gam, J, S, ws[o : o + m]
+
+
+@njit(inline="always")
 def _trig_scratch(ws, n):
     """The workspace's last n entries: scratch of ``eval_constraints_into`` [T223], which
     nothing reads after the evaluation that wrote it."""
@@ -157,14 +174,7 @@ def _accelerations(t, q, qd, mem, P, qdd, lam, eout):
     if fint.shape[0] > 0:  # the call alone costs ≈ 0.13 µs, 12 % of an element-free RHS [T192]
         eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout, kinds)
     if m > 0:
-        o = n
-        Phi = ws[o : o + m]
-        Phit = ws[o + m : o + 2 * m]
-        gam = ws[o + 2 * m : o + 3 * m]
-        o += 3 * m
-        J = ws[o : o + m * n].reshape((m, n))
-        o += m * n
-        S = ws[o : o + m * m].reshape((m, m))
+        Phi, Phit, gam, J, S, _ = _constraint_views(ws, n, m)
         eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, _trig_scratch(ws, n))
         a = stab[0]
         if a > 0.0:
@@ -293,16 +303,7 @@ def project(t, y, P, tol):
     q = y[:n]
     qd = y[n:]
     minv, cint, creal, ws = P.minv, P.cint, P.creal, P.ws
-    o = n  # the layout of rhs / workspace_size: Q (n), Φ, Φ_t, γ (m each), Φ_q (m·n), S (m·m), λ
-    Phi = ws[o : o + m]
-    Phit = ws[o + m : o + 2 * m]
-    gam = ws[o + 2 * m : o + 3 * m]
-    o += 3 * m
-    J = ws[o : o + m * n].reshape((m, n))
-    o += m * n
-    S = ws[o : o + m * m].reshape((m, m))
-    o += m * m
-    x = ws[o : o + m]
+    Phi, Phit, gam, J, S, x = _constraint_views(ws, n, m)
     cs = _trig_scratch(ws, n)
     res = 0.0
     fresh = False  # Φ_q, Φ_t evaluated at the current q
@@ -443,11 +444,7 @@ def outputs(ts, ys, mems, P, do_project):
     bqdd, blam, beout, bdrift = borrowed((qdd, lam, eout, drift))
     ws = bP.ws
     Q = ws[:n]
-    Phi = ws[n : n + m]
-    Phit = ws[n + m : n + 2 * m]
-    gam = ws[n + 2 * m : n + 3 * m]
-    J = ws[n + 3 * m : n + 3 * m + m * n].reshape((m, n))
-    S = ws[n + 3 * m + m * n : n + 3 * m + m * n + m * m].reshape((m, m))
+    Phi, Phit, gam, J, S, _ = _constraint_views(ws, n, m)
     cs = _trig_scratch(ws, n)
     for i in range(nt):
         _sample(
