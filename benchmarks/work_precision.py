@@ -28,6 +28,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn import post
+from jointdyn.borrowed import borrowed
 from jointdyn.dynamics import rhs
 from jointdyn.errors import SimulationError
 from jointdyn.integrators.driver import RADAU5, new_work
@@ -85,6 +86,7 @@ def _error(M, Mr) -> float:
 
 @njit(cache=True)
 def _loop(P, y, mem, n, jac):
+    P, y, mem = borrowed((P, y, mem))  # as the driver runs them [T208]
     nn = y.shape[0]
     f = np.empty(nn)
     Jm = np.empty((nn, nn))
