@@ -212,7 +212,14 @@ def main(argv=None):
     ap.add_argument(
         "--error-scale", default="state", choices=("state", "clearance"), help="SimConfig.error_scale [T186]"
     )
+    ap.add_argument("--write", default=None, help="also write FILE's <!-- generated:work_precision --> block")
     a = ap.parse_args(argv)
+    lines: list[str] = []
+
+    def say(text: str) -> None:
+        print(text)
+        lines.append(text)
+
     ladder = QUICK if a.quick else LADDER
     if a.error_scale == "clearance":
         ladder = QUICK_CLEARANCE if a.quick else LADDER_CLEARANCE
@@ -229,14 +236,15 @@ def main(argv=None):
                 scale = "state" if solver.startswith("scipy") else a.error_scale
                 rows.append(row(system, Mr, solver, rtol, 1 if a.quick else a.repeat, scale))
                 print(f"  done c={c} {solver} rtol={rtol:g}", file=sys.stderr)
-        print(
-            f"\nc = {c:g} mm (reference rodas4 rtol 1e-11; radau5 rtol 1e-12 differs by {ref_err:.1e}); "
+        say(
+            f"\nc = {c:g} mm, error scales {a.error_scale} (scipy-radau: state); reference rodas4 rtol "
+            f"1e-11, radau5 rtol 1e-12 differs by {ref_err:.1e}; "
             f"one RHS {c_rhs * 1e6:.2f} µs, one exact Jacobian {c_jac * 1e6:.2f} µs "
             f"(= {c_jac / c_rhs:.1f} RHS, counted as 1 in `rhs`); radau5: LU pair {c_lu * 1e6:.2f} µs, "
             f"Newton solves {c_sol * 1e6:.2f} µs per iteration"
         )
         cols = ["solver", "rtol", "wall_s", "rhs", "accepted", "rejected", "jacobians", "error", "guard"]
-        print(_table(rows, cols))
+        say("\n" + _table(rows, cols))
         by = {s: [r for r in rows if r["solver"] == s] for s in dict.fromkeys(r["solver"] for r in rows)}
         eq = []
         for target in TARGETS:
@@ -247,10 +255,19 @@ def main(argv=None):
                     if s != "radau5":
                         e[f"{s}/radau5"] = t[s] / t["radau5"]
             eq.append(e)
-        print(f"\nwall time at equal accuracy, c = {c:g} mm (interpolated; nan: not reached on the ladder)")
-        print(_table(eq, list(eq[0])))
+        say(f"\nwall time [s] at equal accuracy, c = {c:g} mm (interpolated; nan: not reached on the ladder)")
+        say("\n" + _table(eq, list(eq[0])))
         result[c] = {"rows": rows, "equal_accuracy": eq, "reference_error": ref_err}
         result[c] |= {"rhs_s": c_rhs, "jac_s": c_jac, "lu_s": c_lu, "solve_s": c_sol}
+    if a.write:
+        from pathlib import Path
+
+        from jointdyn.docs_gen import replace_blocks
+
+        f = Path(a.write)
+        body = "\n".join(lines).strip()
+        text = replace_blocks(f.read_text(encoding="utf-8"), {"work_precision": body})
+        f.write_text(text, encoding="utf-8")
     return result
 
 
