@@ -60,6 +60,9 @@ def main(argv=None):
     ap.add_argument("--rtols", default="1e-6,1e-7,1e-8,1e-9,1e-10,1e-11")
     ap.add_argument("--error-scale", default="state", choices=("state", "clearance"))
     ap.add_argument("--step-ends", type=int, default=0, help="stride of the step-end runs (0: none)")
+    ap.add_argument(
+        "--write", default=None, help="also write FILE's <!-- generated:rodas4_accuracy --> block"
+    )
     a = ap.parse_args(argv)
     rows = []
     for c in (float(x) for x in a.clearances.split(",")):
@@ -114,7 +117,35 @@ def main(argv=None):
                     f"{sub_max:.2e} | {se_max:.2e} | {se_med:.1e} | {row['accepted']} | {row['rejected']} |",
                     flush=True,
                 )
+    body = summary(rows)
+    print("\n" + body)
+    if a.write:
+        from pathlib import Path
+
+        from jointdyn.docs_gen import replace_blocks
+
+        f = Path(a.write)
+        f.write_text(
+            replace_blocks(f.read_text(encoding="utf-8"), {"rodas4_accuracy": body}), encoding="utf-8"
+        )
     return rows
+
+
+def summary(rows) -> str:
+    """One line per rtol: max |ΔM|/peak of every solver, one column group per clearance."""
+    cs = list(dict.fromkeys(r["c_mm"] for r in rows))
+    solvers = list(dict.fromkeys(r["solver"] for r in rows))
+    rtols = sorted({r["rtol"] for r in rows}, reverse=True)
+    err = {(r["c_mm"], r["solver"], r["rtol"]): r["max"] for r in rows}
+    names = " / ".join(f"`{s}`" for s in solvers)
+    out = [
+        "| rtol | " + " | ".join(f"c = {c:g} mm: {names}" for c in cs) + " |",
+        "|---" * (len(cs) + 1) + "|",
+    ]
+    for rt in rtols:
+        cells = [" / ".join(f"{err.get((c, s, rt), math.nan):.1e}" for s in solvers) for c in cs]
+        out.append(f"| {rt:.0e} | " + " | ".join(cells) + " |")
+    return "\n".join(out)
 
 
 if __name__ == "__main__":
