@@ -15,7 +15,8 @@ Accuracy on stiff films [T217–T219]: RODAS has stage order 1, and on a stiff e
 the slow motion (a small-clearance film) the error of its *force* converges at order 1 in h, not
 4; its error estimate measures the state's error, not the force's, so at a given rtol the crank
 moment is 60–100× less accurate than radau5's at c = 0.05 mm (measured), and the continuous
-extension below adds a factor 2.5–22 between step ends. Use radau5 (or ros34pw2) there; rodas4 is for loose bearings and moderate accuracy.
+extension below adds a factor 2.5–22 between step ends. Use radau5 (or ros34pw2) there; rodas4
+is for loose bearings and moderate accuracy.
 """
 
 from __future__ import annotations
