@@ -114,3 +114,19 @@ def test_one_rtol_gives_similar_accuracy_at_both_clearances(solver):
         ratios[scale] = errs[1] / errs[0]
         assert max(errs) < 1e-4  # the accuracy aim of the defaults [T116]
     assert ratios["clearance"] < 5.0 < ratios["state"], ratios
+
+
+def test_results_record_the_error_scale_that_was_used():
+    """The resolved error test is recorded like the resolved solver: the default lubricated run
+    (auto → radau5) says clearance scales at AUTO_CLEARANCE_RATIO × rtol, the same run with the
+    solver named says state scales at rtol — two runs that differ are told apart [T188]."""
+    system = slider_crank("alshaer2005").compile()
+    auto = simulate(system, SimConfig(t_end=2e-3, n_out=5))
+    named = simulate(system, SimConfig(t_end=2e-3, n_out=5, solver="radau5"))
+    assert auto.config["solver"] == named.config["solver"] == "radau5"
+    assert (auto.config["error_scale"], auto.config["error_rtol"]) == (
+        "clearance",
+        AUTO_CLEARANCE_RATIO * 1e-8,
+    )
+    assert (named.config["error_scale"], named.config["error_rtol"]) == ("state", 1e-8)
+    assert not np.array_equal(auto.y, named.y)  # they did run differently

@@ -107,6 +107,7 @@ def summary(res, status: str = "complete") -> dict:
         "samples": len(res.t),
         "solver": res.config["solver"],
         "rtol": res.config["rtol"],
+        "error_scale": res.config.get("error_scale", "state"),
         "atol": res.config["atol"],
         "wall_time_s": res.wall_time,
         **res.stats,

@@ -216,7 +216,11 @@ class Results:
             ("bodies", ", ".join(s.body_names)),
             ("constraints", ", ".join(s.constraint_names)),
             ("elements", ", ".join(f"{n} ({type(e).__name__})" for n, e in zip(s.element_names, s.elements))),
-            ("solver", f"{self.config.get('solver')}, rtol {self.config.get('rtol')}"),
+            (
+                "solver",
+                f"{self.config.get('solver')}, rtol {self.config.get('rtol')}, error scale "
+                f"{self.config.get('error_scale', 'state')} (rtol {self.config.get('error_rtol')} of it)",
+            ),
             ("steps", ", ".join(f"{k} {v}" for k, v in self.stats.items())),
             ("wall time", f"{self.wall_time:.3g} s"),
             ("status", str(self.status)),

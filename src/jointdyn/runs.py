@@ -79,6 +79,7 @@ def summarize(res, cols: dict, revs: float) -> dict:
         "revolutions": revs,
         "solver": res.config["solver"],
         "rtol": res.config["rtol"],
+        "error_scale": res.config.get("error_scale", "state"),
         "wall_time_s": res.wall_time,
         **res.stats,
         "max_drift_position": float(res.drift[:, 0].max()),

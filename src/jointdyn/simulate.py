@@ -347,7 +347,11 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
             else {}
         ),
         wall_time=wall,
-        config={f.name: getattr(config, f.name) for f in fields(config)} | {"baumgarte": a, "solver": solver},
+        config={f.name: getattr(config, f.name) for f in fields(config)}
+        | {"baumgarte": a, "solver": solver}
+        # what the error test did, resolved like the solver: the scale and the rtol relative to
+        # it (rtol itself stays as given; under "auto" they differ by AUTO_CLEARANCE_RATIO) [T188]
+        | {"error_scale": "state" if ysc is None else "clearance", "error_rtol": rtol},
         status=int(status),
     )
     if status == INTERRUPTED:
