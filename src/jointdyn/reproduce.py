@@ -74,6 +74,7 @@ SUMMARY_COLUMNS = (
     "rejected_steps",
     "solver",
     "rtol",
+    "error_scale",
 )
 
 
