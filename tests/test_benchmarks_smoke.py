@@ -28,4 +28,4 @@ def test_work_precision_quick_runs(capsys):
     # radau5's error shrinks with rtol (measured 1.2e-4 at 1e-6, 1.2e-5 at 1e-7)
     r6, r7 = (r["error"] for r in rows if r["solver"] == "radau5")
     assert r7 < r6
-    assert "wall time at equal accuracy" in capsys.readouterr().out
+    assert "wall time [s] at equal accuracy" in capsys.readouterr().out
