@@ -21,7 +21,7 @@ from numba import njit
 from jointdyn.borrowed import borrowed
 from jointdyn.dynamics import _schur_into, cholesky_factor, outputs, rhs
 from jointdyn.integrators import SOLVERS
-from jointdyn.joints.constraints import eval_constraints
+from jointdyn.joints.constraints import eval_constraints, eval_constraints_into
 from jointdyn.models import slider_crank as sc
 from jointdyn.runs import slider_crank_config
 from jointdyn.simulate import simulate
@@ -41,10 +41,10 @@ def _constraints_loop(ts, ys, P):
     ts, ys, P = borrowed((ts, ys, P))
     n = ys.shape[1] // 2
     m = P.n_rows
-    Phi, J, Phit, gam = np.empty(m), np.empty((m, n)), np.empty(m), np.empty(m)
+    Phi, J, Phit, gam, cs = np.empty(m), np.empty((m, n)), np.empty(m), np.empty(m), np.empty(n)
     s = 0.0
-    for i in range(ts.shape[0]):
-        eval_constraints(ts[i], ys[i, :n], ys[i, n:], P.cint, P.creal, Phi, J, Phit, gam)
+    for i in range(ts.shape[0]):  # with a scratch for the trigonometry, as the hot paths [T223]
+        eval_constraints_into(ts[i], ys[i, :n], ys[i, n:], P.cint, P.creal, Phi, J, Phit, gam, cs)
         s += gam[0]
     return s
 
