@@ -25,9 +25,9 @@ import numpy as np
 from numba import njit
 
 from jointdyn import post
-from jointdyn.dynamics import rhs
 from jointdyn.models.slider_crank import SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.dynamics import rhs
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 REVS = 4
 T_END = REVS * 2 * math.pi / SPEED

@@ -26,14 +26,14 @@ import warnings
 import numpy as np
 from numba import njit
 
-from jointdyn.borrowed import borrowed
-from jointdyn.dynamics import project, rhs
+from jointdyn.core.borrowed import borrowed
 from jointdyn.forces.contact_events import onset_limit, refine_peaks
 from jointdyn.forces.elements import advance_memory, onset_fraction, step_limit
 from jointdyn.forces.journal import IN_CONTACT
 from jointdyn.integrators.common import error_norm
 from jointdyn.integrators.driver import DOPRI5, RUNNING, T, drive, new_work, start
 from jointdyn.models.slider_crank import PIN, SPEED, slider_crank
+from jointdyn.multibody.dynamics import project, rhs
 
 
 def trace(rtol: float, revs: float = 4.0) -> dict:

@@ -36,7 +36,7 @@ import numpy as np
 
 from jointdyn import post
 from jointdyn.models.slider_crank import SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 REVS = 4
 N_OUT = REVS * 720 + 1
@@ -196,7 +196,7 @@ def main(argv=None):
     text = "\n".join(lines)
     print(text)
     if a.write is not None:
-        from jointdyn.docs_gen import replace_blocks
+        from jointdyn.cli.docs_gen import replace_blocks
 
         doc = a.write.read_text(encoding="utf-8")
         a.write.write_text(replace_blocks(doc, {"speed": text}), encoding="utf-8")

@@ -22,7 +22,7 @@ from jointdyn import post
 from jointdyn.errors import SimulationError
 from jointdyn.forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
 from jointdyn.models import slider_crank as sc
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 
 def _mixed_law(c):

@@ -18,13 +18,13 @@ import time
 import numpy as np
 from numba import njit
 
-from jointdyn.borrowed import borrowed
-from jointdyn.dynamics import _schur_into, cholesky_factor, outputs, rhs
+from jointdyn.core.borrowed import borrowed
+from jointdyn.core.constraints import eval_constraints, eval_constraints_into
 from jointdyn.integrators import SOLVERS
-from jointdyn.joints.constraints import eval_constraints, eval_constraints_into
 from jointdyn.models import slider_crank as sc
-from jointdyn.runs import slider_crank_config
-from jointdyn.simulate import simulate
+from jointdyn.multibody.dynamics import _schur_into, cholesky_factor, outputs, rhs
+from jointdyn.simulation.simulate import simulate
+from jointdyn.studies.runs import slider_crank_config
 
 
 @njit(cache=True)

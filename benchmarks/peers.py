@@ -35,7 +35,7 @@ from benchmarks.peers_exudyn import analytic_moment, exudyn_dry, exudyn_perfect
 from jointdyn import post
 from jointdyn.errors import SimulationError
 from jointdyn.models.slider_crank import PIN, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 PERFECT_RTOLS = (1e-8, 1e-6, 1e-5, 1e-4, 1e-3)
 DRY_RTOLS = (1e-8, 1e-7, 3e-7, 1e-6, 1e-5)  # looser ones: the accuracy guard refuses them
@@ -190,7 +190,7 @@ def main(argv=None):
     if a.write:
         from pathlib import Path
 
-        from jointdyn.docs_gen import replace_blocks
+        from jointdyn.cli.docs_gen import replace_blocks
 
         f = Path(a.write)
         f.write_text(

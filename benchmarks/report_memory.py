@@ -68,21 +68,21 @@ def main(argv=None) -> list[tuple[str, float, float]]:
         rows.append((what, *_status()))
         print(f"{what:<40} RSS {rows[-1][1]:6.0f} MB   peak {rows[-1][2]:6.0f} MB", flush=True)
 
-    import jointdyn.reproduce as rp
+    import jointdyn.studies.reproduce as rp
 
     mark("imports")
     runs = {}
     for case in rp.PAPER_CASES + rp.BEYOND_CASES:
         runs[case.name] = (*rp.run_case(case, a.revs), case)
     mark(f"{len(runs)} simulations")
-    from jointdyn.reproduce_figures import drawing
+    from jointdyn.viz.reproduce_figures import drawing
 
     with drawing(runs, a.revs) as drawn:
         child = _child_peak(drawn)
     mark("matplotlib figures (other process)")
     print(f"{'  the drawing process':<40} peak {child:6.0f} MB", flush=True)
     try:
-        from jointdyn.iplots import reproduction_html
+        from jointdyn.viz.iplots import reproduction_html
 
         with tempfile.TemporaryDirectory() as d:
             reproduction_html(runs, Path(d) / "interactive.html", a.revs)

@@ -26,7 +26,7 @@ import numpy as np
 from jointdyn import post
 from jointdyn.errors import SimulationError
 from jointdyn.models.slider_crank import SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 N_OUT = 721
 T_END = 2 * math.pi / SPEED
@@ -122,7 +122,7 @@ def main(argv=None):
     if a.write:
         from pathlib import Path
 
-        from jointdyn.docs_gen import replace_blocks
+        from jointdyn.cli.docs_gen import replace_blocks
 
         f = Path(a.write)
         f.write_text(

@@ -17,8 +17,8 @@ import time
 
 import numpy as np
 
-from jointdyn.runs import run_slider_crank
-from jointdyn.sweep import SweepSpec, run_sweep
+from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.sweep import SweepSpec, run_sweep
 
 BASE = {"model": "slider-crank", "joint": "alshaer2005", "revs": 4, "rtol": 1e-6, "atol": 1e-10}
 

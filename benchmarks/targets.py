@@ -203,7 +203,7 @@ def main(argv=None):
     text = end_to_end._table(rows, ["target", "goal", "measured", "met"])
     print("\n" + text)
     if a.write is not None:
-        from jointdyn.docs_gen import replace_blocks
+        from jointdyn.cli.docs_gen import replace_blocks
 
         doc = a.write.read_text(encoding="utf-8")
         a.write.write_text(replace_blocks(doc, {"targets": text}), encoding="utf-8")

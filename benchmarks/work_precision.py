@@ -28,14 +28,14 @@ import numpy as np
 from numba import njit
 
 from jointdyn import post
-from jointdyn.borrowed import borrowed
-from jointdyn.dynamics import rhs
+from jointdyn.core.borrowed import borrowed
 from jointdyn.errors import SimulationError
 from jointdyn.integrators.driver import RADAU5, new_work
 from jointdyn.integrators.radau5 import ALPH, BETA, U1, _factor, _solve
-from jointdyn.jacobian import system_jacobian
 from jointdyn.models.slider_crank import SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.dynamics import rhs
+from jointdyn.multibody.jacobian import system_jacobian
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 REVS = 4
 N_OUT = REVS * 720 + 1
@@ -262,7 +262,7 @@ def main(argv=None):
     if a.write:
         from pathlib import Path
 
-        from jointdyn.docs_gen import replace_blocks
+        from jointdyn.cli.docs_gen import replace_blocks
 
         f = Path(a.write)
         body = "\n".join(lines).strip()

@@ -19,9 +19,9 @@ FIG = Path(__file__).resolve().parent / "figures"
 
 
 def poincare(revs: int = 220, transient: int = 20):
-    from jointdyn.chaos.poincare import journal_section, plot_sections
     from jointdyn.models.slider_crank import SPEED
-    from jointdyn.runs import run_slider_crank
+    from jointdyn.studies.poincare import journal_section, plot_sections
+    from jointdyn.studies.runs import run_slider_crank
 
     T = 2 * math.pi / SPEED
     secs = {}
@@ -44,8 +44,8 @@ def poincare(revs: int = 220, transient: int = 20):
 def lyapunov_row(joint: str, rtol: float, d0: float):
     """One entry of the page's Lyapunov table: 40 averaging revolutions after 10, τ = T/16,
     norm time scale 1/ω, atol = 1e-3·rtol (also run by tests/test_docs_chaos_current.py)."""
-    from jointdyn.chaos.lyapunov import system_lyapunov
     from jointdyn.models import slider_crank as sc
+    from jointdyn.studies.lyapunov import system_lyapunov
 
     T = 2 * math.pi / sc.SPEED
     return system_lyapunov(
@@ -61,7 +61,7 @@ def lyapunov_row(joint: str, rtol: float, d0: float):
 
 
 def lyapunov():
-    from jointdyn.chaos.lyapunov import plot_running
+    from jointdyn.studies.lyapunov import plot_running
 
     rows = []
     for joint, rtol, d0 in (
@@ -95,8 +95,8 @@ def lyapunov():
 def lyapunov_tau():
     """Dry joint, rtol 1e-9, δ₀ = 1e-8: the renormalisation interval τ = T/8 and T/32 (T/16 is in
     :func:`lyapunov`), the same 40 averaging revolutions after 10 [T137]."""
-    from jointdyn.chaos.lyapunov import system_lyapunov
     from jointdyn.models import slider_crank as sc
+    from jointdyn.studies.lyapunov import system_lyapunov
 
     T = 2 * math.pi / sc.SPEED
     for per_rev in (8, 32):
@@ -114,8 +114,8 @@ def lyapunov_tau():
 
 
 def spectrum():
-    from jointdyn.chaos.spectra import plot_spectra, run_spectra
-    from jointdyn.runs import run_slider_crank
+    from jointdyn.studies.runs import run_slider_crank
+    from jointdyn.studies.spectra import plot_spectra, run_spectra
 
     res, _, _ = run_slider_crank("dry", 60, samples_per_rev=720, rtol=1e-8, atol=1e-11)
     sp = run_spectra(res, transient_revs=10)
@@ -124,7 +124,7 @@ def spectrum():
 
 
 def ensemble():
-    from jointdyn.chaos.ensemble import ensemble_table, slider_crank_ensemble
+    from jointdyn.studies.ensemble import ensemble_table, slider_crank_ensemble
 
     r = slider_crank_ensemble(
         "dry", rtols=(1e-7, 1e-8, 1e-9), replicas=2, revs=110, transient_revs=10, workers=2

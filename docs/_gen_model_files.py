@@ -1,7 +1,7 @@
 """Regenerate docs/model_files.md from the registries' dataclasses and tests/data/bad_models/.
 
 Run from the repository root:  python docs/_gen_model_files.py
-The key tables come from ``jointdyn.config.schemas()`` (the dataclass fields, their type hints,
+The key tables come from ``jointdyn.io.modelfile.schemas()`` (the dataclass fields, their type hints,
 defaults and docstrings); the bad-model table is the actual error each file gives.
 """
 
@@ -10,10 +10,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from jointdyn import config as C
 from jointdyn.errors import ModelError
-from jointdyn.forces.film_models import FILM_MODELS
+from jointdyn.film.models import FILM_MODELS
 from jointdyn.integrators import SOLVERS
+from jointdyn.io import modelfile as C
 
 ROOT = Path(__file__).resolve().parents[1]
 BAD = ROOT / "tests" / "data" / "bad_models"
@@ -21,9 +21,9 @@ BAD = ROOT / "tests" / "data" / "bad_models"
 INTRO = '''# Model files (TOML)
 
 A model file describes one planar mechanism and how to integrate it. It is read by
-`jointdyn.config.load_model(path, overrides=()) -> (Model, SimConfig)` and written by
+`jointdyn.io.modelfile.load_model(path, overrides=()) -> (Model, SimConfig)` and written by
 `save_model(model, config, path)`; `jointdyn run FILE.toml --out DIR` (or
-`jointdyn.runs.run_model_file(path, out_dir, overrides)`) simulates it and writes the same files
+`jointdyn.studies.runs.run_model_file(path, out_dir, overrides)`) simulates it and writes the same files
 as every run: `results.nc`, `timeseries.csv` (time, the coordinates, velocities, multipliers and
 every element's outputs, units in the headers), `summary.json`, figures, `model.toml` (the
 resolved model) and `manifest.json` (see [the command line](user-guide/cli.md)). Shipped

@@ -10,11 +10,12 @@ import math
 
 import matplotlib.pyplot as plt
 
-from jointdyn import plots, post
-from jointdyn.joints.constraints import AngleDriver, Revolute, Translational
-from jointdyn.model import Model
+from jointdyn.viz import plots
+from jointdyn import post
+from jointdyn.core.constraints import AngleDriver, Revolute, Translational
+from jointdyn.multibody.model import Model
 from jointdyn.models.slider_crank import slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.simulation.simulate import SimConfig, simulate
 from jointdyn.units import rpm
 
 r, l, omega = 0.05, 0.12, rpm(5000)  # crank and rod length [m], crank speed [rad/s]

@@ -11,7 +11,9 @@ import math
 
 import matplotlib.pyplot as plt
 
-from jointdyn import SimConfig, plots, post, simulate, slider_crank
+from jointdyn.viz import plots
+from jointdyn import post
+from jointdyn import SimConfig, simulate, slider_crank
 from jointdyn.models.slider_crank import SPEED
 
 revs = 2

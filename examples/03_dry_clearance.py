@@ -16,7 +16,7 @@ from jointdyn import post
 from jointdyn.forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
 from jointdyn.forces.journal import ClearanceJoint
 from jointdyn.models.slider_crank import SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 R_B, R_J = 0.0105, 0.0100  # hole and pin radii [m]
 K = journal_bearing_stiffness(R_B, R_J, 207e9, 0.3, 207e9, 0.3)  # [N/m^1.5]

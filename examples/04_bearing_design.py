@@ -12,7 +12,7 @@ import math
 import matplotlib.pyplot as plt
 
 from jointdyn.bearing import bearing_table, equilibrium
-from jointdyn.bearing.plot import pressure_figure
+from jointdyn.viz.bearing_plot import pressure_figure
 
 R, L, c, mu = 0.025, 0.025, 30e-6, 0.02  # journal radius, length, radial clearance [m], viscosity [Pa·s]
 W, N = 4000.0, 25.0  # load [N], journal speed [rev/s]

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from jointdyn.reproduce import PAPER_CASES, run_case
+from jointdyn.studies.reproduce import PAPER_CASES, run_case
 
 GOLDEN = Path(__file__).parent / "data" / "golden_alshaer2005.json"
 REVS = 1.0

@@ -7,13 +7,13 @@ import time
 import numpy as np
 import pytest
 
-from jointdyn.bearing import film as fm
 from jointdyn.bearing.design import bearing_table, equilibrium
-from jointdyn.bearing.fv import assemble
-from jointdyn.bearing.lcp import residual, solve_lcp
-from jointdyn.bearing.long_short import long_steady, short_steady
-from jointdyn.bearing.shear import film_power_loss
-from jointdyn.forces.shear import couette_torque, shear_torques
+from jointdyn.film import field as fm
+from jointdyn.film.fv import assemble
+from jointdyn.film.lcp import residual, solve_lcp
+from jointdyn.film.long_short import long_steady, short_steady
+from jointdyn.film.shear import film_power_loss
+from jointdyn.film.shear_kernels import couette_torque, shear_torques
 
 
 def test_lcp_complementarity_and_uniqueness():
@@ -35,7 +35,7 @@ def test_banded_active_set_equals_the_sparse_lu_one():
     problems (ξ ∈ [0, 0.99), L/D 1/8 … 8, meshes 24…144 × 4…16, periodic and with a supply line),
     measured max |ΔP|/max P = 2.4e-14; bound 1e-12 (two factorisations of the same SPD matrix,
     condition number ≲ 1e4 on these meshes)."""
-    from jointdyn.bearing.lcp import solve_lcp_banded
+    from jointdyn.film.lcp import solve_lcp_banded
 
     rng = np.random.default_rng(0)
     for trial in range(30):
@@ -211,7 +211,7 @@ def test_active_set_agrees_with_projected_sor():
     """Two different LCP algorithms on the same discrete problem (supply line at θ = 0, steady
     wedge and a squeeze state): max |ΔP| / max P measured 1.4e-14, 2.0e-14 (PSOR stopped at 1e-14 per
     sweep; bound 1e-9)."""
-    from jointdyn.bearing.lcp import psor
+    from jointdyn.film.lcp import psor
 
     prob = assemble(0.7, 0.5, 48, 6)
     fixed = np.zeros(prob.bA.size, bool)
@@ -237,8 +237,8 @@ def test_angles_tend_to_the_long_bearing():
 def test_finite_torques_use_the_table_force():
     """The compiled ``finite`` torque kernel = shear_torques with the kernel's own F_t (exact),
     and the pair's moment M_J + M_B + e·F_t vanishes (angular momentum of the film pair)."""
-    from jointdyn.bearing.shear import finite_torques
-    from jointdyn.forces.film_finite import build_table, finite_force
+    from jointdyn.film.finite import build_table, finite_force
+    from jointdyn.film.shear import finite_torques
 
     tab = build_table(1.0)
     mu, R, L, c = 0.05, 0.02, 0.04, 4e-5
@@ -255,7 +255,7 @@ def test_pressure_figure_marks_the_peak():
     import matplotlib
 
     matplotlib.use("Agg")
-    from jointdyn.bearing.plot import pressure_figure
+    from jointdyn.viz.bearing_plot import pressure_figure
 
     args = (0.7, 20.0, 0.7 * 300, 0.05, 0.02, 0.04, 4e-5)
     fig = pressure_figure(*args, gamma=0.5)
@@ -274,7 +274,7 @@ def test_poiseuille_torque_identity_for_the_long_pi_film():
     kernel: measured ≤ 2.4e-15 relative (bound 1e-10, quadrature at epsrel 1e-13)."""
     from scipy.integrate import quad
 
-    from jointdyn.forces.film_models import pi_film_force
+    from jointdyn.film.models import pi_film_force
 
     mu, R, L, c = 0.4, 0.01, 0.04, 5e-4
     for xi, xd, Om in ((0.5, 20.0, 323.6), (0.9, -5.0, 423.6), (0.3, 40.0, -200.0)):
@@ -294,8 +294,8 @@ def test_poiseuille_torque_identity_for_the_long_pi_film():
 def test_film_torques_for_every_model(name):
     """film_torques(code, …) = shear_torques with that model's own F_t (exact); Petroff's torque
     at ξ = 0 (1e-12) for every registered film model."""
-    from jointdyn.bearing.shear import film_torques
-    from jointdyn.forces.film_models import FILM_MODELS, film_force
+    from jointdyn.film.models import FILM_MODELS, film_force
+    from jointdyn.film.shear import film_torques
 
     model = FILM_MODELS[name]()
     mu, R, L, c = 0.05, 0.02, 0.04, 4e-5

@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from jointdyn.bearing import film as fm
-from jointdyn.forces.film_finite import (
+from jointdyn.film import field as fm
+from jointdyn.film.finite import (
     XI_MAX,
     _gumbel_outputs,
     build_table,

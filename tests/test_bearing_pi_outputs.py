@@ -7,7 +7,7 @@ import pytest
 from scipy.integrate import quad
 from scipy.optimize import minimize_scalar
 
-from jointdyn.bearing.pi_outputs import long_pi_outputs, short_pi_outputs
+from jointdyn.film.pi_outputs import long_pi_outputs, short_pi_outputs
 
 MU, R, L, C = 0.4, 0.01, 0.04, 5e-4
 # states of the reference table [T164]: steady, approach, separation, whirl, Ω < 0, squeeze

@@ -9,7 +9,7 @@ import pytest
 from numba import njit
 from numba.core.runtime import _nrt_python, rtsys
 
-from jointdyn.borrowed import borrowed
+from jointdyn.core.borrowed import borrowed
 from jointdyn.integrators.driver import DOPRI5, RADAU5, drive, new_work, run, start
 from jointdyn.models.slider_crank import slider_crank
 
@@ -78,7 +78,7 @@ def test_step_loop_and_outputs_allocate_nothing_per_step(nrt_stats):
     """The DOPRI5 loop of a dry run (projection after every accepted step included) and the output
     samples allocate a fixed number of arrays, independent of the number of steps and samples
     [T208]: the same count for a run 4× longer."""
-    from jointdyn.dynamics import outputs
+    from jointdyn.multibody.dynamics import outputs
 
     system = _dry()
     P = system.packed(0.0)

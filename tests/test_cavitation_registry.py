@@ -9,12 +9,12 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from jointdyn.bearing import cavitation as cv
 from jointdyn.bearing.design import bearing_table
-from jointdyn.bearing.film import pressure_field
-from jointdyn.bearing.lcp import psor, residual
-from jointdyn.forces.film_finite import build_table
-from jointdyn.forces.film_models import Finite
+from jointdyn.film import cavitation as cv
+from jointdyn.film.field import pressure_field
+from jointdyn.film.finite import build_table
+from jointdyn.film.lcp import psor, residual
+from jointdyn.film.models import Finite
 
 
 class ProjectedSOR:

@@ -8,14 +8,14 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from jointdyn.chaos.ensemble import band, convergence, revolution_stats
-from jointdyn.chaos.lyapunov import batch_stderr, benettin, system_lyapunov
-from jointdyn.chaos.poincare import journal_relative_state, plane_crossing, stroboscopic
-from jointdyn.chaos.spectra import amplitude_spectrum, run_spectra
 from jointdyn.cli import app
-from jointdyn.config import load_model
+from jointdyn.io.modelfile import load_model
 from jointdyn.models import slider_crank as sc
-from jointdyn.runs import run_slider_crank
+from jointdyn.studies.ensemble import band, convergence, revolution_stats
+from jointdyn.studies.lyapunov import batch_stderr, benettin, system_lyapunov
+from jointdyn.studies.poincare import journal_relative_state, plane_crossing, stroboscopic
+from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.spectra import amplitude_spectrum, run_spectra
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 OMEGA_N = 2 * math.pi  # [rad/s] of examples/oscillator_*.toml
@@ -230,7 +230,7 @@ def test_ueda_oscillator_matches_the_published_exponent():
     # Ueda (1979) ẍ + 0.05 ẋ + x³ = 7.5 cos t: λ₁ = 0.0999 1/s (Sprott, Chaos and Time-Series
     # Analysis, 2003, p. 429; 4th-order Runge–Kutta, h = 0.001) [T129]. Ours over 3000
     # forcing periods; tolerance 3 standard errors of our batch means (measured s.e. ≈ 0.003)
-    from jointdyn.chaos.lyapunov import ode_lyapunov
+    from jointdyn.studies.lyapunov import ode_lyapunov
 
     def f(t, x):
         return [x[1], -(x[0] ** 3) - 0.05 * x[1] + 7.5 * math.cos(t)]
@@ -262,10 +262,10 @@ def test_slider_crank_exponent_signs(joint, sign):
 def test_sweep_array_output_is_the_runs_own_section(tmp_path):
     # a sweep case with [output.poincare] returns the stroboscopic section of its run: the same
     # numbers (bit for bit: same deterministic run) as sectioning a direct run [T136]
-    from jointdyn.chaos.bifurcation import section_arrays
-    from jointdyn.runs import run_slider_crank
-    from jointdyn.sweep import run_sweep
-    from jointdyn.sweep_spec import SweepSpec
+    from jointdyn.studies.bifurcation import section_arrays
+    from jointdyn.studies.runs import run_slider_crank
+    from jointdyn.studies.sweep import run_sweep
+    from jointdyn.studies.sweep_spec import SweepSpec
 
     base = {"joint": "dry", "rtol": 1e-7, "atol": 1e-10, "revs": 3, "samples_per_rev": 72}
     poincare = {"transient_revs": 1, "record_revs": 2, "section_angle": 0.0}
@@ -284,8 +284,8 @@ def test_reproduce_ensemble_quotes_the_per_revolution_statistics_of_its_runs():
     # the README/report numbers of the dry case are medians and 5–95 % quantiles of the pooled
     # per-revolution samples [T120, T135]: recomputed here from direct runs of the same cases
     # (replica 0 unperturbed, replica 1 perturbed with seed 1) — equal to round-off
-    from jointdyn.chaos.ensemble import _run_case
-    from jointdyn.reproduce_ensemble import dry_ensemble, ensemble_markdown, ensemble_rows
+    from jointdyn.studies.ensemble import _run_case
+    from jointdyn.studies.reproduce_ensemble import dry_ensemble, ensemble_markdown, ensemble_rows
 
     kw = {"rtols": (1e-7,), "replicas": 2, "revs": 4, "transient_revs": 1, "samples_per_rev": 720}
     ens = dry_ensemble(workers=1, **kw)
@@ -308,7 +308,7 @@ def test_bifurcation_on_a_dask_cluster_equals_the_local_run(tmp_path):
     # the diagram is a sweep [T136]: on a Dask LocalCluster it gives the same section points,
     # bit for bit (same compiled code, same inputs), as on local processes
     distributed = pytest.importorskip("distributed", reason="the [dist] extra is needed for Dask")
-    from jointdyn.chaos.bifurcation import BifurcationSpec, run_bifurcation
+    from jointdyn.studies.bifurcation import BifurcationSpec, run_bifurcation
 
     spec = BifurcationSpec(
         base={"joint": "dry", "rtol": 1e-7, "atol": 1e-10},

@@ -9,7 +9,7 @@ import xarray as xr
 from typer.testing import CliRunner
 
 from jointdyn.cli import app
-from jointdyn.forces.film_models import film_forces
+from jointdyn.film.models import film_forces
 
 runner = CliRunner()
 
@@ -125,8 +125,8 @@ def test_plot_and_animate_a_saved_run(tmp_path):
 
 
 def test_saved_file_reads_back_as_the_in_memory_dataset(tmp_path):
-    from jointdyn.results import load
-    from jointdyn.runs import run_slider_crank
+    from jointdyn.simulation.results import load
+    from jointdyn.studies.runs import run_slider_crank
 
     res, _, _ = run_slider_crank("dry", 0.1)
     res.save(tmp_path / "r.nc")

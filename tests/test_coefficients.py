@@ -9,13 +9,13 @@ import numpy as np
 import pytest
 from fd_reference import central, one_sided
 
-from jointdyn.coefficients import (
+from jointdyn.film.coefficients import (
     dynamic_coefficients,
     equilibrium,
     equilibrium_locus,
     stability_threshold,
 )
-from jointdyn.forces.film_models import film_forces
+from jointdyn.film.models import film_forces
 
 EPS = np.round(np.arange(0.05, 0.96, 0.05), 2)
 NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
@@ -210,7 +210,7 @@ def test_finite_stiffness_tends_to_long_pi_film():
 
 
 def test_columns_declared():
-    from jointdyn.coefficients import COLUMNS
+    from jointdyn.film.coefficients import COLUMNS
 
     assert set(dynamic_coefficients("ott", 1.0, 0.5)) == set(COLUMNS)
 
@@ -222,8 +222,8 @@ def test_system_jacobian_of_a_rotor_on_the_bearing_gives_the_coefficients(model,
     ∂ẍ/∂x = −K/m and ∂ẍ/∂ẋ = −C/m with K = k W/c, C = c̄ W/(cω) from [T107] — two independent
     paths (element chain rule vs the Cartesian linearisation)."""
     from jointdyn.forces.journal import JournalBearing
-    from jointdyn.jacobian import system_jacobian
-    from jointdyn.model import Model
+    from jointdyn.multibody.jacobian import system_jacobian
+    from jointdyn.multibody.model import Model
 
     eps, R, c, mu, omega, g = 0.6, 0.01, 5e-5, 0.02, 300.0, 9.81
     L = 2 * R * ld
@@ -247,7 +247,7 @@ def test_system_jacobian_of_a_rotor_on_the_bearing_gives_the_coefficients(model,
     ft = np.empty(nn)
     f0 = np.empty(nn)
     assert system_jacobian(0.0, y, f0, s.mem0, P, Jm, ft, np.empty(nn), np.empty(nn)) == 0
-    from jointdyn.dynamics import rhs
+    from jointdyn.multibody.dynamics import rhs
 
     rhs(0.0, y, s.mem0, P, f0)
     assert np.abs(f0[3:5]).max() <= 1e-9 * g  # static equilibrium: film force balances gravity
@@ -301,7 +301,7 @@ def test_bearing_table_carries_the_dynamic_coefficients_of_its_film():
     """The design table adds k, c and Lund's threshold where the table's film has a dynamic
     kernel (Gümbel films), from the same exact Jacobians; none for Swift–Stieber films."""
     from jointdyn.bearing.design import COEFFICIENT_COLUMNS, bearing_table
-    from jointdyn.coefficients import dynamic_coefficients
+    from jointdyn.film.coefficients import dynamic_coefficients
 
     tab = bearing_table("short", "gumbel", 0.25, [0.3, 0.7])
     for i, eps in enumerate((0.3, 0.7)):

@@ -1,5 +1,5 @@
 """Long-bearing dynamic coefficients in closed form [T86] and the L/D → ∞ limit of the ``finite``
-film's coefficients [T87], against ``jointdyn.coefficients.dynamic_coefficients`` (which
+film's coefficients [T87], against ``jointdyn.film.coefficients.dynamic_coefficients`` (which
 differentiates the kernels by their hand-coded exact Jacobians [T90–T92], a separate path)."""
 
 from __future__ import annotations
@@ -9,7 +9,7 @@ import math
 import numpy as np
 import pytest
 
-from jointdyn.coefficients import dynamic_coefficients
+from jointdyn.film.coefficients import dynamic_coefficients
 
 PI = math.pi
 NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")

@@ -33,8 +33,8 @@ CHILD = textwrap.dedent(
     """
     + LISTENER
     + """    from jointdyn.models import slider_crank as sc
-    from jointdyn.runs import slider_crank_config
-    from jointdyn.simulate import simulate
+    from jointdyn.studies.runs import slider_crank_config
+    from jointdyn.simulation.simulate import simulate
     res = simulate(sc.slider_crank("perfect").compile(), slider_crank_config("perfect", 0.02, solver=sys.argv[1]))
     print(json.dumps(names))
     """
@@ -86,7 +86,7 @@ KINDS_CHILD = textwrap.dedent(
     + LISTENER
     + """    from jointdyn.forces.elements import NOUT, eval_forces, kinds_of
     from jointdyn.forces.springs import SpringDamper
-    from jointdyn.model import Model
+    from jointdyn.multibody.model import Model
     m = Model("oscillator", gravity=(0.0, 0.0))
     m.add_ground_point("O", (0.0, 0.0))
     m.add_body("b", 0.2, 1e-3, position=(0.11, 0.0), points={"c": (0.0, 0.0)})
@@ -148,7 +148,7 @@ def _pair_system(element):
     import warnings
 
     from jointdyn.errors import PhysicsWarning
-    from jointdyn.model import Model
+    from jointdyn.multibody.model import Model
 
     m = Model("pair", gravity=(0.0, 0.0))
     m.add_body("a", 1.0, 1e-3, position=(0.0, 0.0), points={"A": (0.03, -0.01)})
@@ -189,8 +189,8 @@ HOW_TO_RUN = textwrap.dedent(
     import json, sys
     sys.path.insert(0, sys.argv[2])
     from plugin_torque import ConstantTorque  # the how-to's code block, literally, as a module
-    from jointdyn.model import Model
-    from jointdyn.simulate import SimConfig, simulate
+    from jointdyn.multibody.model import Model
+    from jointdyn.simulation.simulate import SimConfig, simulate
     m = Model("free body", gravity=(0.0, 0.0))
     m.add_body("b", 2.0, 0.5, position=(0.0, 0.0))
     m.add("motor", ConstantTorque("b", moment=3.0))

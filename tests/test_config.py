@@ -1,4 +1,4 @@
-"""Model files (jointdyn.config): file = Python builder, save/load round trip, overrides,
+"""Model files (jointdyn.io.modelfile): file = Python builder, save/load round trip, overrides,
 a perfect four-bar against its closed-form loop equation, and every bad model file in
 tests/data/bad_models/ giving its one-line ModelError (expected key/line/message in EXPECTED.toml).
 """
@@ -12,24 +12,24 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from jointdyn import config as cfgmod
-from jointdyn.config import (
-    apply_overrides,
-    dumps,
-    load_model,
-    run_model_file,
-    save_model,
-)
+from jointdyn.core.constraints import CONSTRAINTS, Revolute, Translational
 from jointdyn.errors import ModelError
 from jointdyn.forces.contact_laws import CONTACT_LAWS, HuntCrossley
 from jointdyn.forces.elements import FORCE_ELEMENTS
 from jointdyn.forces.friction_laws import FRICTION_LAWS, Ambrosio, Coulomb
 from jointdyn.forces.journal import JournalBearing
 from jointdyn.forces.springs import SpringDamper
-from jointdyn.joints.constraints import CONSTRAINTS, Revolute, Translational
-from jointdyn.model import Body, Model
+from jointdyn.io import modelfile as cfgmod
+from jointdyn.io.modelfile import (
+    apply_overrides,
+    dumps,
+    load_model,
+    save_model,
+)
 from jointdyn.models.slider_crank import slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Body, Model
+from jointdyn.simulation.simulate import SimConfig, simulate
+from jointdyn.studies.runs import run_model_file
 
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"

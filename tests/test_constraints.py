@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from jointdyn.joints.constraints import (
+from jointdyn.core.constraints import (
     CONSTRAINTS,
     AngleDriver,
     Revolute,
@@ -73,7 +73,7 @@ def test_scratch_trig_gives_the_same_numbers(kind):
     """eval_constraints_into (the bodies' cos φ, sin φ evaluated once into a scratch array [T223])
     writes what the wrapper writes, bit for bit, whatever the scratch held before; a revolute's
     Φ also against its closed form (numpy's sin/cos may differ from libm's in the last bit)."""
-    from jointdyn.joints.constraints import eval_constraints_into
+    from jointdyn.core.constraints import eval_constraints_into
 
     rng = np.random.default_rng(3)
     c = make(kind, "a", "b")

@@ -7,13 +7,13 @@ import warnings
 import numpy as np
 import pytest
 
-from jointdyn.dynamics import rhs
 from jointdyn.forces.contact_events import first_root, hermite_peak, penetration_rates
 from jointdyn.forces.contact_laws import Hertz
 from jointdyn.forces.journal import ClearanceJoint, penetration
-from jointdyn.model import Model
 from jointdyn.models.slider_crank import PIN, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.dynamics import rhs
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 RB, RJ = 0.0105, 0.0100
 

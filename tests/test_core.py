@@ -7,11 +7,11 @@ import pytest
 from analytic import slider_crank_inverse_dynamics
 
 from jointdyn import post
+from jointdyn.core.constraints import AngleDriver, Revolute, Translational
 from jointdyn.errors import ModelError
-from jointdyn.joints.constraints import AngleDriver, Revolute, Translational
-from jointdyn.model import Model
 from jointdyn.models.slider_crank import SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 T4 = 4 * 2 * math.pi / SPEED
 

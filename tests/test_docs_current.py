@@ -1,6 +1,6 @@
 """README numbers are generated, never pasted: recompute them and compare with the README.
 
-``python -m jointdyn.docs_gen`` writes the blocks; this test recomputes the numbers (the nine
+``python -m jointdyn.cli.docs_gen`` writes the blocks; this test recomputes the numbers (the nine
 reproduction cases, 4 revolutions, and the 25-case sweep of
 ``examples/sweep_clearance_viscosity.toml``) and fails, listing each stale number, when the
 README is out of date. Tolerance: one unit in the last printed digit (3–4 significant digits);
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from jointdyn import docs_gen
+from jointdyn.cli import docs_gen
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -44,7 +44,9 @@ def test_readme_numbers_are_current():
     blocks = set(docs_gen.blocks(readme.read_text()))
     assert {"reproduce-table", "dry-ensemble", "reproduce-claims", "sweep-claims"} <= blocks
     problems = docs_gen.check(readme, workers=2)
-    assert not problems, "README is out of date; run `python -m jointdyn.docs_gen`:\n" + "\n".join(problems)
+    assert not problems, "README is out of date; run `python -m jointdyn.cli.docs_gen`:\n" + "\n".join(
+        problems
+    )
 
 
 @pytest.mark.parametrize(

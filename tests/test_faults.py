@@ -22,20 +22,21 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from jointdyn import atomic, options
 from jointdyn.cli import app
-from jointdyn.config import dumps, load_model
+from jointdyn.core import atomic
+from jointdyn.core.constraints import CONSTRAINTS
 from jointdyn.errors import Interrupted, ModelError
+from jointdyn.film.models import FILM_MODELS
 from jointdyn.forces.contact_laws import CONTACT_LAWS
 from jointdyn.forces.elements import FORCE_ELEMENTS
-from jointdyn.forces.film_models import FILM_MODELS
 from jointdyn.forces.friction_laws import FRICTION_LAWS
 from jointdyn.integrators import SOLVERS
-from jointdyn.joints.constraints import CONSTRAINTS
+from jointdyn.io.modelfile import dumps, load_model
+from jointdyn.io.rundir import LOCK, OutputDir, read_manifest
 from jointdyn.models.slider_crank import slider_crank
-from jointdyn.rundir import LOCK, OutputDir, read_manifest
-from jointdyn.simulate import SimConfig
-from jointdyn.sweep import load_sweep, run_sweep
+from jointdyn.simulation.simulate import SimConfig
+from jointdyn.studies import options
+from jointdyn.studies.sweep import load_sweep, run_sweep
 
 runner = CliRunner()
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -77,7 +78,7 @@ def complete_files(d: Path) -> dict:
     for name, meta in m["files"].items():
         assert (d / name).stat().st_size == meta["bytes"] and atomic.sha256(d / name) == meta["sha256"]
     if "results.nc" in m["files"]:
-        from jointdyn.results import load
+        from jointdyn.simulation.results import load
 
         load(d / "results.nc")
     return m
@@ -329,7 +330,7 @@ def _registry_rows():
 
 def _example_text(family: str, name: str) -> str:
     """A two-body model file holding the registry entry's own ``example()`` as ``x``."""
-    from jointdyn.model import Model
+    from jointdyn.multibody.model import Model
 
     m = Model("example")
     for b, x in (("a", 0.0), ("b", 0.2)):
@@ -422,7 +423,7 @@ def test_sweep_file_faults(tmp_path):
 
 
 def test_string_sweep_parameter_gathers(tmp_path):
-    from jointdyn.sweep import SweepSpec, run_sweep
+    from jointdyn.studies.sweep import SweepSpec, run_sweep
 
     spec = SweepSpec(
         base={"model": "slider-crank", "revs": 0.05, "samples_per_rev": 200, "viscosity": 0.4},
@@ -458,7 +459,7 @@ def test_film_force_bad_tables(tmp_path, text, needle):
 
 def test_film_force_bom_and_streaming(tmp_path):
     """A BOM is not part of the first column's name; 10,000 rows go through in blocks."""
-    from jointdyn.filmtable import BLOCK
+    from jointdyn.film.table import BLOCK
 
     f = tmp_path / "s.csv"
     f.write_bytes(("\ufeff" + HDR + "\n" + (ROW + "\n") * (2 * BLOCK + 5)).encode("utf-8"))
@@ -505,7 +506,7 @@ def test_version_and_list_and_help():
 
 
 def test_interrupted_ensemble_stops_its_workers_promptly(tmp_path):
-    """Ctrl-C during an ensemble (the pool shared with sweeps, jointdyn.pool) kills the workers
+    """Ctrl-C during an ensemble (the pool shared with sweeps, jointdyn.io.pool) kills the workers
     instead of waiting for the runs in flight (each of these would take ≳ 10 s)."""
     out = tmp_path / "e"
     p = start(
@@ -535,7 +536,9 @@ def test_signal_while_the_report_is_written_stops_it(tmp_path, monkeypatch):
     """Ctrl-C after the simulations, while the figures are drawn (in their own process): the
     reproduction stops before the next file with status ``interrupted`` (it completed and said
     ``complete``), keeping the files written so far, each whole, and kills the drawing."""
-    from jointdyn import interrupts, reproduce, rundir
+    from jointdyn.core import interrupts
+    from jointdyn.io import rundir
+    from jointdyn.studies import reproduce
 
     real, popen, procs = reproduce.drawing, subprocess.Popen, []
 
@@ -575,8 +578,8 @@ class _Unloadable:
 
 def test_a_failed_drawing_says_why():
     """The figures' process fails: the error says so and carries the end of its error output."""
-    from jointdyn import interrupts
-    from jointdyn.reproduce_figures import drawing
+    from jointdyn.core import interrupts
+    from jointdyn.viz.reproduce_figures import drawing
 
     expect = r"drawing the report figures failed \(exit 1\).*ZeroDivisionError"
     with interrupts.catching(), pytest.raises(RuntimeError, match=expect):

@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from jointdyn.forces.film_finite import build_table, finite_force, solve_unit_pressures, unit_forces
-from jointdyn.forces.film_models import pi_film_force, short_force
+from jointdyn.film.finite import build_table, finite_force, solve_unit_pressures, unit_forces
+from jointdyn.film.models import pi_film_force, short_force
 
 NO_PARAMS = np.zeros(1)  # the model's own parameter block (finite has none)
 

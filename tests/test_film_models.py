@@ -1,7 +1,7 @@
 """Film models ``ott`` and ``alshaer2005`` (π-film) against independent references:
 
 * the reference tables of docs/theory.md [T164] (computed outside the project, transcribed below);
-* the numerical long-bearing Reynolds solver ``jointdyn.reynolds`` (fixed frame, quadrature,
+* the numerical long-bearing Reynolds solver ``jointdyn.film.long_reference`` (fixed frame, quadrature,
   film start by root finding; it shares no formula with the kernels);
 * the classic closed-form limits [T28] and the edge cases [T24].
 
@@ -14,8 +14,8 @@ import math
 import numpy as np
 import pytest
 
-from jointdyn import reynolds
-from jointdyn.forces.film_models import (
+from jointdyn.film import long_reference as reynolds
+from jointdyn.film.models import (
     ALSHAER2005,
     FILM_MODELS,
     OTT,

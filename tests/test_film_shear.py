@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 
 from jointdyn import post
+from jointdyn.film.models import Finite
 from jointdyn.forces.elements import NMEM, NOUT, eval_forces
-from jointdyn.forces.film_models import Finite
 from jointdyn.forces.journal import JournalBearing
-from jointdyn.model import Model
 from jointdyn.models.slider_crank import SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 MU, R, L, C = 0.4, 0.0100, 0.04, 5e-4
 REV = 2 * math.pi / SPEED
@@ -119,7 +119,7 @@ def test_film_outputs_over_a_run(film):
     through the independent Python front film_forces equals the element's output to round-off),
     and the peak pressure sits on the side of the film that pushes the journal: the force on the
     journal points away from it (angle between F and the peak's direction > 90°)."""
-    from jointdyn.forces.film_models import film_forces
+    from jointdyn.film.models import film_forces
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # short at L/D = 2

@@ -10,9 +10,9 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from jointdyn.errors import PhysicsWarning
-from jointdyn.forces.film_models import short_force
+from jointdyn.film.models import short_force
 from jointdyn.forces.journal import JournalBearing
-from jointdyn.model import Model
+from jointdyn.multibody.model import Model
 
 TAB = np.zeros((1, 2))
 NO_PARAMS = np.zeros(1)  # the model's own parameter block (short has none)

@@ -8,8 +8,8 @@ import pytest
 
 from jointdyn.forces.contact_laws import Flores, Hertz, HuntCrossley, LankaraniNikravesh
 from jointdyn.forces.journal import ClearanceJoint
-from jointdyn.model import Model
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 RB, RJ = 0.0105, 0.0100
 K = 6.9e10  # benchmark journal-in-bearing stiffness [T160, T56] [N/m^1.5]

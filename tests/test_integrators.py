@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from jointdyn.forces.springs import SpringDamper
-from jointdyn.model import Model
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 
 def oscillator(k, d, mass=0.2, x0=1e-3):

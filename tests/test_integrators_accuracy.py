@@ -9,7 +9,7 @@ from test_integrators import oscillator
 from jointdyn.errors import SimulationError
 from jointdyn.integrators.accuracy import force_resolution
 from jointdyn.integrators.common import FORCE_UNRESOLVED
-from jointdyn.runs import run_slider_crank
+from jointdyn.studies.runs import run_slider_crank
 
 
 def test_force_resolution_of_a_spring_damper_closed_form():

@@ -14,8 +14,8 @@ import pytest
 from jointdyn.errors import Interrupted
 from jointdyn.integrators.common import INTERRUPTED
 from jointdyn.models import slider_crank as sc
-from jointdyn.runs import slider_crank_config
-from jointdyn.simulate import simulate
+from jointdyn.simulation.simulate import simulate
+from jointdyn.studies.runs import slider_crank_config
 
 CASES = [("dry", "dopri5"), ("dry", "rodas4"), ("alshaer2005", "rodas4"), ("alshaer2005", "ros34pw2")]
 
@@ -51,8 +51,8 @@ CHILD = textwrap.dedent(
     import sys, time
     from jointdyn.errors import Interrupted
     from jointdyn.models import slider_crank as sc
-    from jointdyn.runs import slider_crank_config
-    from jointdyn.simulate import simulate
+    from jointdyn.studies.runs import slider_crank_config
+    from jointdyn.simulation.simulate import simulate
 
     joint, solver = sys.argv[1], sys.argv[2]
     system = sc.slider_crank(joint).compile()

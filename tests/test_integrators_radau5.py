@@ -12,8 +12,8 @@ from jointdyn.integrators.driver import RADAU5, new_work, start
 from jointdyn.integrators.radau5 import attempt_radau5, store_polynomial, write_dense_radau5
 from jointdyn.integrators.rodas4 import jacobian
 from jointdyn.models import slider_crank as sc
-from jointdyn.runs import slider_crank_config
-from jointdyn.simulate import simulate
+from jointdyn.simulation.simulate import simulate
+from jointdyn.studies.runs import slider_crank_config
 
 K_, D_, MASS, X0 = 1e4, 5.0, 0.2, 1e-3  # ω = 223.6 rad/s, ζ = 0.056
 

@@ -12,7 +12,7 @@ from jointdyn.integrators.accuracy import force_resolution
 from jointdyn.integrators.common import error_norm, error_norm_scaled
 from jointdyn.integrators.weights import AUTO_CLEARANCE_RATIO, clearance_scale
 from jointdyn.models.slider_crank import CRANK_LENGTH, ROD_LENGTH, SPEED, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 
 def _system(**kw):

@@ -5,8 +5,9 @@ import pytest
 
 pytest.importorskip("plotly")
 
-from jointdyn import SimConfig, iplots, simulate, slider_crank  # noqa: E402
+from jointdyn import SimConfig, simulate, slider_crank  # noqa: E402
 from jointdyn.models.slider_crank import SPEED  # noqa: E402
+from jointdyn.viz import iplots  # noqa: E402
 
 
 @pytest.fixture(scope="module")
@@ -47,7 +48,7 @@ def _plot_args(html: str, div: str):
 
 def test_reproduction_page_carries_the_runs_and_plotly_js(dry, tmp_path):
     from jointdyn import post
-    from jointdyn.reproduce import PAPER_CASES
+    from jointdyn.studies.reproduce import PAPER_CASES
 
     case = next(c for c in PAPER_CASES if c.name == "dry")
     out = iplots.reproduction_html({"dry": (dry, None, None, case)}, tmp_path / "i.html", 0.5)

@@ -9,14 +9,12 @@ import numpy as np
 import pytest
 from fd_reference import central, one_sided
 
-from jointdyn.forces.contact_jacobians import contact_jac
-from jointdyn.forces.contact_laws import CONTACT_LAWS, contact_force
-from jointdyn.forces.film_finite import build_table
-from jointdyn.forces.film_jacobians import film_jac
-from jointdyn.forces.film_models import FILM_MODELS, FILM_WIDTH, film_force
-from jointdyn.forces.friction_jacobians import friction_jac
-from jointdyn.forces.friction_laws import FRICTION_LAWS, friction_coefficient
-from jointdyn.layout import params_of
+from jointdyn.core.layout import params_of
+from jointdyn.film.finite import build_table
+from jointdyn.film.jacobians import film_jac
+from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force
+from jointdyn.forces.contact_laws import CONTACT_LAWS, contact_force, contact_jac
+from jointdyn.forces.friction_laws import FRICTION_LAWS, friction_coefficient, friction_jac
 
 MU, R, L, C = 0.4, 0.01, 0.04, 5e-4  # the benchmark bearing [Pa·s, m, m, m]
 P0 = np.zeros(FILM_WIDTH)  # the film models have no parameters of their own

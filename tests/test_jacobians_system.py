@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 from fd_reference import central
 
-from jointdyn.config import load_model
-from jointdyn.dynamics import rhs
 from jointdyn.forces.element_jacobians import force_jacobian
-from jointdyn.jacobian import system_jacobian
+from jointdyn.io.modelfile import load_model
 from jointdyn.models.slider_crank import JOINTS, slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.dynamics import rhs
+from jointdyn.multibody.jacobian import system_jacobian
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 # goal of the issue: 1e-6. Measured (this file's states): slider-crank ≤ 3.1e-8 for every joint
@@ -68,7 +68,7 @@ def states(system, n_states, rng, t_end):
 
 def driven_rows(system):
     """Rows of q̈ fixed by an angle driver against the ground (φ̈ = α exactly, [T7])."""
-    from jointdyn.joints.constraints import AngleDriver
+    from jointdyn.core.constraints import AngleDriver
 
     n = system.n
     return [
@@ -270,7 +270,7 @@ def test_simulate_with_the_exact_jacobian():
     far fewer RHS evaluations per accepted step (measured 25 → 7 on this case) at the accuracy of
     the finite-difference run (both within the tolerance-level error of a converged run)."""
     from jointdyn import post
-    from jointdyn.simulate import SimConfig, simulate
+    from jointdyn.simulation.simulate import SimConfig, simulate
 
     system = slider_crank("alshaer2005").compile()
     ref = simulate(system, SimConfig(t_end=0.25 * REV, n_out=181, rtol=1e-11, atol=1e-14))
@@ -288,7 +288,7 @@ def test_scratch_array_of_the_integrators_gives_the_same_jacobian():
     """``system_jacobian_into`` (the integrators' call, scratch kept between steps) returns the
     same bits as ``system_jacobian`` (fresh scratch), also with a stale scratch full of NaN and
     with one too short (then it makes its own); same arithmetic, so equality is exact."""
-    from jointdyn.jacobian import jacobian_work_size, system_jacobian_into
+    from jointdyn.multibody.jacobian import jacobian_work_size, system_jacobian_into
 
     system = slider_crank("alshaer2005").compile()
     P = system.packed(0.0)
@@ -307,7 +307,7 @@ def test_scratch_array_of_the_integrators_gives_the_same_jacobian():
 def test_jacobian_accelerations_are_the_right_hand_side(joint):
     """radau5 reads f(t, y) from the Jacobian's scratch when it takes a Jacobian after a step
     [T185]: q̈ there must be dynamics.rhs's, bit for bit (same arithmetic, so equality is exact)."""
-    from jointdyn.jacobian import jacobian_work_size, system_jacobian_into
+    from jointdyn.multibody.jacobian import jacobian_work_size, system_jacobian_into
 
     system = slider_crank(joint).compile()
     P = system.packed(0.0)

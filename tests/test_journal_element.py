@@ -7,13 +7,13 @@ import numpy as np
 import pytest
 
 from jointdyn.errors import SimulationError
+from jointdyn.film.models import film_forces
 from jointdyn.forces.contact_laws import LankaraniNikravesh
 from jointdyn.forces.elements import NOUT, eval_forces
-from jointdyn.forces.film_models import film_forces
 from jointdyn.forces.journal import ClearanceJoint, JournalBearing
-from jointdyn.model import Model
 from jointdyn.models.slider_crank import slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 RB, RJ, L, MU = 0.0105, 0.0100, 0.04, 0.4
 C = RB - RJ

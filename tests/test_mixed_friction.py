@@ -6,10 +6,10 @@ import pytest
 from jointdyn.forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
 from jointdyn.forces.friction_laws import Ambrosio, Coulomb
 from jointdyn.forces.journal import ClearanceJoint
-from jointdyn.model import Model
 from jointdyn.models import slider_crank as sc
-from jointdyn.runs import run_slider_crank
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
+from jointdyn.studies.runs import run_slider_crank
 
 C, HA, MU = 5e-5, 1e-6, 1e-3  # tight bearing, 1 µm asperities, a very thin oil [m, m, Pa·s]
 

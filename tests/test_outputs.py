@@ -6,7 +6,11 @@ import math
 import numpy as np
 import pytest
 
-from jointdyn.dynamics import (
+from jointdyn.core.constraints import eval_constraints
+from jointdyn.forces.elements import NOUT
+from jointdyn.integrators.driver import METHODS, run
+from jointdyn.models.slider_crank import SPEED, slider_crank
+from jointdyn.multibody.dynamics import (
     accelerations,
     constraint_residuals,
     outputs,
@@ -14,10 +18,6 @@ from jointdyn.dynamics import (
     project_positions,
     project_velocities,
 )
-from jointdyn.forces.elements import NOUT
-from jointdyn.integrators.driver import METHODS, run
-from jointdyn.joints.constraints import eval_constraints
-from jointdyn.models.slider_crank import SPEED, slider_crank
 
 T1 = 2 * math.pi / SPEED  # one crank revolution [s]
 

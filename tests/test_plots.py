@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from jointdyn import SimConfig, plots, simulate, slider_crank
+from jointdyn import SimConfig, simulate, slider_crank
 from jointdyn.models.slider_crank import SPEED
+from jointdyn.viz import plots
 
 
 @pytest.fixture(scope="module")

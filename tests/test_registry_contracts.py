@@ -16,17 +16,17 @@ import warnings
 import numpy as np
 import pytest
 
+from jointdyn.core.constraints import CONSTRAINTS, constraint_table, eval_constraints
+from jointdyn.core.layout import params_of
 from jointdyn.errors import PhysicsWarning
+from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force
 from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_force
 from jointdyn.forces.elements import FORCE_ELEMENTS, NINT, NMEM, NOUT, NREAL, eval_forces
-from jointdyn.forces.film_models import FILM_MODELS, FILM_WIDTH, film_force
 from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient
 from jointdyn.forces.journal import JournalBearing
 from jointdyn.integrators import SOLVERS
-from jointdyn.joints.constraints import CONSTRAINTS, constraint_table, eval_constraints
-from jointdyn.layout import params_of
-from jointdyn.model import Model
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 MU, R, L, C = 0.4, 0.01, 0.02, 5e-4  # benchmark pin, L/D = 1 (inside every model's domain)
 NO_TABLE = np.zeros((1, 2))
@@ -326,7 +326,7 @@ def test_solver_integrates_a_pendulum(name):
     m = Model("pendulum")
     m.add_body("bar", 2.0, 0.02, position=(0.25, 0.0), points={"pin": (-0.25, 0.0)})
     m.add_ground_point("O", (0.0, 0.0))
-    from jointdyn.joints.constraints import Revolute
+    from jointdyn.core.constraints import Revolute
 
     m.add("pin", Revolute("ground", "O", "bar", "pin"))
     sysm = m.compile()
@@ -342,7 +342,7 @@ def test_solver_integrates_a_pendulum(name):
 def test_exact_jacobians_are_declared_where_the_system_jacobian_uses_them():
     """A film model with a ``jacobian`` is differentiated exactly in the system Jacobian, one
     without falls back to finite differences: the two lists must be the same."""
-    from jointdyn.forces.film_jacobians import HAS_JACOBIAN
+    from jointdyn.film.jacobians import HAS_JACOBIAN
 
     declared = {cls.code for cls in FILM_MODELS.values() if getattr(cls, "jacobian", None) is not None}
     assert declared == set(HAS_JACOBIAN)
@@ -357,7 +357,7 @@ def test_film_jacobian_contract(name):
     """Forces bit-identical to the kernel; derivatives = central differences at interior states
     (h = 1e-6 of the scale: truncation ~1e-12, round-off ~1e-10 relative; bound 1e-6 of the
     row's scale, the issue's criterion)."""
-    from jointdyn.forces.film_jacobians import film_jac
+    from jointdyn.film.jacobians import film_jac
 
     m, p, tab = _film(name)
     jac = type(m).jacobian

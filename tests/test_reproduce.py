@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from jointdyn.reproduce import SUMMARY_COLUMNS, reproduce_alshaer2005
+from jointdyn.studies.reproduce import SUMMARY_COLUMNS, reproduce_alshaer2005
 
 
 @pytest.fixture(scope="module")

@@ -10,7 +10,7 @@ import time
 import numpy as np
 import pytest
 
-from jointdyn.sweep import SweepSpec, load_sweep, run_sweep
+from jointdyn.studies.sweep import SweepSpec, load_sweep, run_sweep
 
 BASE = {"model": "slider-crank", "joint": "perfect", "revs": 0.25, "samples_per_rev": 90}
 
@@ -62,7 +62,7 @@ def test_killed_sweep_resumes_without_recomputing(tmp_path):
     )
     out = tmp_path / "out"
     code = (
-        f"from jointdyn.sweep import load_sweep, run_sweep; "
+        f"from jointdyn.studies.sweep import load_sweep, run_sweep; "
         f"run_sweep(load_sweep({str(sweep_file)!r}), {str(out)!r}, workers=1)"
     )
     proc = subprocess.Popen([sys.executable, "-c", code], start_new_session=True)

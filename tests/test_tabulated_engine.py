@@ -6,11 +6,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from jointdyn.config import load_model
+from jointdyn.core.constraints import Translational
 from jointdyn.forces.tabulated import TabulatedForce
-from jointdyn.joints.constraints import Translational
-from jointdyn.model import Model
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.io.modelfile import load_model
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 

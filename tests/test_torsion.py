@@ -8,12 +8,12 @@ import numpy as np
 import pytest
 from scipy.integrate import simpson, solve_ivp
 
-from jointdyn.config import load_system
 from jointdyn.errors import ModelError
 from jointdyn.forces.elements import NMEM, NOUT, eval_forces
 from jointdyn.forces.torsion import HarmonicTorque, TorsionSpring
-from jointdyn.model import Model
-from jointdyn.simulate import SimConfig, simulate
+from jointdyn.io.modelfile import load_system
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig, simulate
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 # ∫₀¹ du/√(1 − u⁴) = ϖ/2, half the lemniscate constant (Abramowitz & Stegun 17.4.46 / OEIS A062539)
@@ -22,7 +22,7 @@ HALF_LEMNISCATE = 1.3110287771460599
 
 def _rotor(*elements, angle=0.0, omega=0.0, inertia=2.0):
     """One rotor of inertia J [kg·m²] on a revolute joint to the ground at its centre."""
-    from jointdyn.joints.constraints import Revolute
+    from jointdyn.core.constraints import Revolute
 
     m = Model("rotor", gravity=(0.0, 0.0))
     m.add_ground_point("O", (0.0, 0.0))
@@ -151,7 +151,7 @@ def test_ueda_model_file_reproduces_the_published_exponent():
     # 0.0998 ± 0.0042 1/s (`jointdyn lyapunov examples/ueda.toml --tau 6.283185307179586
     # --segments 1500 --transient 628.3185307179586 --time-scale 1 --rtol 1e-10 --atol 1e-12`).
     # Bound: 3 standard errors of our batch means (plus Sprott's last digit, 5e-5)
-    from jointdyn.chaos.lyapunov import system_lyapunov
+    from jointdyn.studies.lyapunov import system_lyapunov
 
     _, system, _ = load_system(EXAMPLES / "ueda.toml", [])
     r = system_lyapunov(

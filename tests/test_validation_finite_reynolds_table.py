@@ -6,8 +6,8 @@ import math
 import numpy as np
 import pytest
 
-from jointdyn.bearing import film as fm
-from jointdyn.forces.film_finite import build_table, finite_force
+from jointdyn.film import field as fm
+from jointdyn.film.finite import build_table, finite_force
 
 NO_PARAMS = np.zeros(1)  # the finite model's own parameter block (none)
 MU, R, C, LD = 0.4, 0.01, 5e-4, 2.0

@@ -1,6 +1,6 @@
 """MkDocs hook: render the Sphinx roles of the docstrings as code, not as raw text.
 
-The docstrings cross-reference with reStructuredText roles (``:class:`~jointdyn.results.Results```,
+The docstrings cross-reference with reStructuredText roles (``:class:`~jointdyn.simulation.results.Results```,
 ``:func:`simulate```, ``:meth:`save```). mkdocstrings reads them as plain Markdown, so the page
 would show ``:class:`` followed by the code span. This hook turns every such pair into the code span
 alone, shortening ``~a.b.C`` to ``C`` as Sphinx does.

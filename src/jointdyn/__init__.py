@@ -9,7 +9,7 @@ The front door::
     res = load("run.nc")  # Results again: res.element(...), jointdyn.post.* work on it
 
 Note: ``jointdyn.simulate`` is the function; the module is ``sys.modules["jointdyn.simulate"]``
-(``from jointdyn.simulate import SimConfig`` keeps working).
+(``from jointdyn.simulation.simulate import SimConfig`` keeps working).
 """
 
 from __future__ import annotations
@@ -68,13 +68,13 @@ _numba_cache_dir()
 from importlib.metadata import PackageNotFoundError as _PNF  # noqa: E402
 from importlib.metadata import version as _v  # noqa: E402
 
-from . import post  # noqa: E402
-from .errors import ModelError, PhysicsWarning, SimulationError  # noqa: E402
-from .model import Model  # noqa: E402
-from .models.slider_crank import slider_crank  # noqa: E402
-from .results import Results  # noqa: E402
-from .simulate import SimConfig, simulate  # noqa: E402
-from .system import System  # noqa: E402
+from jointdyn import post  # noqa: E402
+from jointdyn.errors import ModelError, PhysicsWarning, SimulationError  # noqa: E402
+from jointdyn.models.slider_crank import slider_crank  # noqa: E402
+from jointdyn.multibody.model import Model  # noqa: E402
+from jointdyn.multibody.system import System  # noqa: E402
+from jointdyn.simulation.results import Results  # noqa: E402
+from jointdyn.simulation.simulate import SimConfig, simulate  # noqa: E402
 
 try:
     __version__ = _v("jointdyn")
@@ -87,7 +87,7 @@ load = Results.load
 def __getattr__(name: str):
     # model files (pydantic, ~0.15 s to import) only when used: the CLI's shipped models skip it
     if name == "load_model":
-        from .config import load_model
+        from jointdyn.io.modelfile import load_model
 
         return load_model
     raise AttributeError(f"module 'jointdyn' has no attribute {name!r}")

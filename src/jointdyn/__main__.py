@@ -1,5 +1,5 @@
 """``python -m jointdyn`` = the ``jointdyn`` command."""
 
-from .cli import app
+from jointdyn.cli import app
 
 app()

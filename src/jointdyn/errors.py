@@ -14,7 +14,7 @@ class PhysicsWarning(UserWarning):
 class SimulationError(RuntimeError):
     """Integration failed. Keeps what was computed so far.
 
-    Attributes: ``t`` [s] time reached, ``results`` the partial :class:`~jointdyn.results.Results`.
+    Attributes: ``t`` [s] time reached, ``results`` the partial :class:`~jointdyn.simulation.results.Results`.
     """
 
     def __init__(self, message: str, t: float, results=None):

@@ -1,10 +1,10 @@
-"""Derived quantities from results (pure functions of a :class:`~jointdyn.results.Results`)."""
+"""Derived quantities from results (pure functions of a :class:`~jointdyn.simulation.results.Results`)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-from .joints.constraints import Revolute
+from jointdyn.core.constraints import Revolute
 
 
 def driving_moment(res, driver: str = "drive") -> np.ndarray:
@@ -67,8 +67,8 @@ def film_states(res, element: str) -> dict:
     """Film state of a journal bearing at every sample: ``xi`` [-], ``xi_dot`` [1/s],
     ``xi_Omega`` [rad/s] (Ω = ω_J + ω_B − 2γ̇, [T14]), ``gamma`` [rad] (line of centres relative
     to the bushing body) and the bushing body's angle ``phi_bearing`` [rad]."""
-    from .forces.journal import CLR, journal_kinematics
-    from .layout import BODY_I, BODY_J
+    from jointdyn.core.layout import BODY_I, BODY_J
+    from jointdyn.forces.journal import CLR, journal_kinematics
 
     s = res.system
     k = res._element(element)[0]
@@ -96,11 +96,11 @@ def film_outputs(res, element: str) -> dict:
     the bushing frame, from the bushing's x axis, CCW), ``theta_end`` [deg] (film end/rupture,
     same frame) and ``side_flow`` [m³/s] (short and finite models; NaN for the long models,
     which have none)."""
-    from .bearing.pi_outputs import long_pi_outputs, short_pi_outputs
-    from .forces.film_finite import finite_outputs
-    from .forces.film_models import FILM_WIDTH, film_model, film_name
-    from .forces.journal import JournalBearing
-    from .layout import params_of
+    from jointdyn.core.layout import params_of
+    from jointdyn.film.finite import finite_outputs
+    from jointdyn.film.models import FILM_WIDTH, film_model, film_name
+    from jointdyn.film.pi_outputs import long_pi_outputs, short_pi_outputs
+    from jointdyn.forces.journal import JournalBearing
 
     el = res.system.elements[res._element(element)[0]]
     if not isinstance(el, JournalBearing):
@@ -128,39 +128,3 @@ def film_outputs(res, element: str) -> dict:
         for key, th in (("theta_pmax", tp), ("theta_end", te)):
             out[key][i] = np.degrees(np.mod(th + st["gamma"][i] + np.pi, 2 * np.pi))
     return out
-
-
-def pressure_figure_at(res, element: str, crank_angle_deg: float):
-    """Figure of the film pressure of bearing ``element`` at the sample nearest to the crank
-    angle ``crank_angle_deg`` [deg] (unwrapped from the run's start): mid-plane pressure around
-    the bushing and p(θ, z), from the 2-D Reynolds solver at the bearing's L/D with the run's
-    film state (Swift–Stieber rupture unless the bearing's ``finite`` model uses Gümbel) [T70–T76]."""
-    from .bearing.plot import pressure_figure
-    from .forces.film_models import film_model, film_name
-
-    el = res.system.elements[res._element(element)[0]]
-    ang = np.degrees(res.crank_angle() - res.crank_angle()[0])
-    if not (ang.min() <= crank_angle_deg <= ang.max()):
-        raise ValueError(
-            f"--at {crank_angle_deg!r} [deg]: the run covers {ang.min():.4g} … {ang.max():.4g} deg"
-        )
-    i = int(np.argmin(np.abs(ang - crank_angle_deg)))
-    st = film_states(res, element)
-    fm = film_model(el.film)
-    cav = getattr(fm, "cavitation", "reynolds")
-    title = (
-        f"{element}: film pressure at crank angle {ang[i]:.1f}° (t = {res.t[i] * 1e3:.3f} ms), "
-        f"ξ = {st['xi'][i]:.3f}\nrun with film {film_name(el.film)!r}; pressure from 2-D Reynolds ({cav})"
-    )
-    return pressure_figure(
-        min(st["xi"][i], 0.999),
-        st["xi_dot"][i],
-        st["xi_Omega"][i],
-        el.viscosity,
-        el.journal_radius,
-        el.length,
-        el.clearance,
-        gamma=st["gamma"][i],
-        cavitation=cav,
-        title=title,
-    )

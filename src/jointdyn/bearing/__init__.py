@@ -10,11 +10,11 @@ __all__ = ["CAVITATION", "COLUMNS", "MODELS", "bearing_table", "equilibrium"]
 
 def __getattr__(name: str):
     if name in ("COLUMNS", "MODELS", "bearing_table", "equilibrium"):
-        from . import design
+        from jointdyn.bearing import design
 
         return getattr(design, name)
     if name == "CAVITATION":
-        from .cavitation import names
+        from jointdyn.film.cavitation import names
 
         return names()
     raise AttributeError(f"module 'jointdyn.bearing' has no attribute {name!r}")

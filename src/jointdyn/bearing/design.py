@@ -16,10 +16,10 @@ import math
 
 import numpy as np
 
-from . import film as fm
-from .cavitation import check_cavitation
-from .fv import DEFAULT_MESH, check_ld, check_xi
-from .long_short import long_steady, short_steady
+from jointdyn.film import field as fm
+from jointdyn.film.cavitation import check_cavitation
+from jointdyn.film.fv import DEFAULT_MESH, check_ld, check_xi
+from jointdyn.film.long_short import long_steady, short_steady
 
 #: the columns of :func:`bearing_table`, in order
 COLUMNS = (
@@ -149,7 +149,7 @@ def bearing_table(model: str, cavitation: str, ld: float, eps_list, mesh=DEFAULT
     out = {c: np.array([r[c] for r in rows]) for c in COLUMNS}
     twin = COEFFICIENT_MODEL.get((model, cavitation))
     if twin is not None:
-        from ..coefficients import dynamic_coefficients
+        from jointdyn.film.coefficients import dynamic_coefficients
 
         coef = [dynamic_coefficients(twin, float(ld), float(x)) for x in e]
         out.update({c: np.array([d[c] for d in coef]) for c in COEFFICIENT_COLUMNS})

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .design import bearing_table
+from jointdyn.bearing.design import bearing_table
 
 #: compared columns and their published counterparts
 COMPARED = (

@@ -23,8 +23,8 @@ import math
 
 from numba import njit
 
-from ..layout import BODY_I, BODY_J, TYPE
-from .journal import (
+from jointdyn.core.layout import BODY_I, BODY_J, TYPE
+from jointdyn.forces.journal import (
     CLR,
     CONTACT,
     H_ASP,
@@ -35,7 +35,7 @@ from .journal import (
     ONSET_TOL,
     journal_kinematics,
 )
-from .kinds import kind_gate
+from jointdyn.forces.kinds import kind_gate
 
 
 @njit(cache=True)

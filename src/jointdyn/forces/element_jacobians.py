@@ -13,14 +13,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..layout import BODY_I, BODY_J, TYPE
-from .contact_jacobians import contact_jac
-from .contact_laws import KELVIN_VOIGT
-from .elements import NOUT, eval_forces
-from .film_jacobians import film_jac
-from .film_models import ALSHAER2005, FINITE, OTT, SHORT
-from .friction_jacobians import friction_jac
-from .journal import (
+from jointdyn.core.layout import BODY_I, BODY_J, TYPE
+from jointdyn.film.jacobians import film_jac
+from jointdyn.film.models import ALSHAER2005, FINITE, OTT, SHORT
+from jointdyn.forces.contact_laws import KELVIN_VOIGT, contact_jac
+from jointdyn.forces.elements import NOUT, eval_forces
+from jointdyn.forces.friction_laws import friction_jac
+from jointdyn.forces.journal import (
     CLR,
     CONTACT,
     CONTACT_P0,
@@ -48,18 +47,18 @@ from .journal import (
     XI_GUARD,
     journal_kinematics,
 )
-from .kinds import kind_switch
-from .simple_jacobians import (
+from jointdyn.forces.kinds import kind_switch
+from jointdyn.forces.simple_jacobians import (
     harmonic_torque_dt,
     spring_damper_jacobian,
     tabulated_force_jacobian,
     torsion_spring_jacobian,
 )
-from .springs import SPRING_DAMPER
-from .tabulated import TABLE as TAB_TABLE
-from .tabulated import TABULATED_FORCE
-from .torsion import HARMONIC_TORQUE, TORSION_SPRING
-from .transfer import pair_jac, pair_rates
+from jointdyn.forces.springs import SPRING_DAMPER
+from jointdyn.forces.tabulated import TABLE as TAB_TABLE
+from jointdyn.forces.tabulated import TABULATED_FORCE
+from jointdyn.forces.torsion import HARMONIC_TORQUE, TORSION_SPRING
+from jointdyn.forces.transfer import pair_jac, pair_rates
 
 
 @njit(cache=True)
@@ -324,12 +323,12 @@ def fallback_elements(system) -> list[str]:
     """Names of the elements of a compiled system whose Jacobian comes from the finite-difference
     fallback [T100] (journal elements use it additionally at e = 0 only, spring–dampers at zero
     length [T118]): for a one-time notice."""
-    from .film_jacobians import HAS_JACOBIAN
-    from .film_models import film_model
-    from .journal import ClearanceJoint, JournalBearing
-    from .springs import SpringDamper
-    from .tabulated import TabulatedForce
-    from .torsion import HarmonicTorque, TorsionSpring
+    from jointdyn.film.jacobians import HAS_JACOBIAN
+    from jointdyn.film.models import film_model
+    from jointdyn.forces.journal import ClearanceJoint, JournalBearing
+    from jointdyn.forces.springs import SpringDamper
+    from jointdyn.forces.tabulated import TabulatedForce
+    from jointdyn.forces.torsion import HarmonicTorque, TorsionSpring
 
     names = []
     for name, e in zip(system.element_names, system.elements, strict=True):

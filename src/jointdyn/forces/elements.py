@@ -14,8 +14,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..layout import BODY_I, BODY_J, TYPE
-from .journal import (
+from jointdyn.core.layout import BODY_I, BODY_J, TYPE
+from jointdyn.forces.journal import (
     CONTACT,
     IMPACTS,
     IN_CONTACT,
@@ -29,12 +29,12 @@ from .journal import (
     journal_element,
     penetration,
 )
-from .journal import NO_CONTACT as _NO_CONTACT
-from .kinds import kind_gate, kind_loop, kinds_tuple
-from .springs import SPRING_DAMPER, SpringDamper, spring_damper
-from .tabulated import TABLE as TAB_TABLE
-from .tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
-from .torsion import (
+from jointdyn.forces.journal import NO_CONTACT as _NO_CONTACT
+from jointdyn.forces.kinds import kind_gate, kind_loop, kinds_tuple
+from jointdyn.forces.springs import SPRING_DAMPER, SpringDamper, spring_damper
+from jointdyn.forces.tabulated import TABLE as TAB_TABLE
+from jointdyn.forces.tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
+from jointdyn.forces.torsion import (
     HARMONIC_TORQUE,
     TORSION_SPRING,
     HarmonicTorque,

@@ -29,17 +29,17 @@ from typing import ClassVar
 
 from numba import njit
 
-from ..errors import PhysicsWarning
-from ..kinematics import body_state, point_kinematics
-from ..layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout, check_finite, params_of
-from .contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_force
-from .contact_laws import NONE as NO_CONTACT
-from .film_models import FILM_MODELS, FILM_WIDTH, film_force, film_model, film_name
-from .film_models import NONE as NO_FILM
-from .friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient
-from .friction_laws import NONE as NO_FRICTION
-from .shear import couette_torque
-from .transfer import apply_pair, pair_power
+from jointdyn.core.kinematics import body_state, point_kinematics
+from jointdyn.core.layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout, check_finite, params_of
+from jointdyn.errors import PhysicsWarning
+from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force, film_model, film_name
+from jointdyn.film.models import NONE as NO_FILM
+from jointdyn.film.shear_kernels import couette_torque
+from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_force
+from jointdyn.forces.contact_laws import NONE as NO_CONTACT
+from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient
+from jointdyn.forces.friction_laws import NONE as NO_FRICTION
+from jointdyn.forces.transfer import apply_pair, pair_power
 
 JOURNAL = 1
 
@@ -158,7 +158,7 @@ class ClearanceJoint:
     def example(cls):
         """The benchmark's dry pin (R_B = 10.5 mm, R_J = 10 mm, Lankarani–Nikravesh) between
         points "A" of body "a" and "B" of body "b" (contract tests)."""
-        from .contact_laws import LankaraniNikravesh
+        from jointdyn.forces.contact_laws import LankaraniNikravesh
 
         return cls("a", "A", "b", "B", 0.0105, 0.0100, contact=LankaraniNikravesh.example())
 

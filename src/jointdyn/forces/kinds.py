@@ -26,7 +26,7 @@ from collections.abc import Callable, Mapping, Sequence
 from numba import types
 from numba.extending import overload
 
-from ..layout import TYPE
+from jointdyn.core.layout import TYPE
 
 
 def kinds_tuple(codes: Sequence[int], known: Sequence[int]) -> tuple:

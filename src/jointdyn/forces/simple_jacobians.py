@@ -14,13 +14,13 @@ import math
 import numpy as np
 from numba import njit
 
-from ..kinematics import point_kinematics
-from ..layout import ETA_I, ETA_J, XI_I, XI_J
-from .springs import L0, D, K
-from .tabulated import ARGUMENT as TARG
-from .tabulated import DIR_X, DIR_Y, TIME, table_value
-from .torsion import AMP, K1, K3, OMEGA, PHASE, THETA0, C
-from .transfer import pair_jac, pair_rates
+from jointdyn.core.kinematics import point_kinematics
+from jointdyn.core.layout import ETA_I, ETA_J, XI_I, XI_J
+from jointdyn.forces.springs import L0, D, K
+from jointdyn.forces.tabulated import ARGUMENT as TARG
+from jointdyn.forces.tabulated import DIR_X, DIR_Y, TIME, table_value
+from jointdyn.forces.torsion import AMP, K1, K3, OMEGA, PHASE, THETA0, C
+from jointdyn.forces.transfer import pair_jac, pair_rates
 
 
 @njit(cache=True)

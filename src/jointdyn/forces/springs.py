@@ -8,9 +8,9 @@ from typing import ClassVar
 
 from numba import njit
 
-from ..kinematics import point_kinematics
-from ..layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout
-from .transfer import apply_pair, pair_power
+from jointdyn.core.kinematics import point_kinematics
+from jointdyn.core.layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout
+from jointdyn.forces.transfer import apply_pair, pair_power
 
 SPRING_DAMPER = 0
 REAL = Layout(POINTS + ("stiffness", "damping", "free_length"))

@@ -9,8 +9,8 @@ from typing import ClassVar
 import numpy as np
 from numba import njit
 
-from ..kinematics import body_state, point_kinematics
-from ..layout import ETA_J, HEADER, POINTS, XI_J, Layout
+from jointdyn.core.kinematics import body_state, point_kinematics
+from jointdyn.core.layout import ETA_J, HEADER, POINTS, XI_J, Layout
 
 TABULATED_FORCE = 3
 TIME = -2  # "argument" slot value: the argument is the time

@@ -14,7 +14,7 @@ from typing import ClassVar
 
 from numba import njit
 
-from ..layout import HEADER, POINTS, Layout, check_finite
+from jointdyn.core.layout import HEADER, POINTS, Layout, check_finite
 
 TORSION_SPRING = 4
 HARMONIC_TORQUE = 5

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from functools import partial
 
-from .driver import DOPRI5, RADAU5, RODAS4, ROS34PW2, run
+from jointdyn.integrators.driver import DOPRI5, RADAU5, RODAS4, ROS34PW2, run
 
 dopri5 = partial(run, DOPRI5)
 rodas4 = partial(run, RODAS4)
@@ -18,7 +18,9 @@ radau5 = partial(run, RADAU5)
 
 def _scipy(method):
     def run(*args, **kwargs):
-        from .scipy_ivp import scipy_ivp  # scipy.integrate costs ~0.5 s to import: only when used
+        from jointdyn.integrators.scipy_ivp import (
+            scipy_ivp,  # scipy.integrate costs ~0.5 s to import: only when used
+        )
 
         return scipy_ivp(*args, method=method, **kwargs)
 

@@ -18,10 +18,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..forces.elements import FILM_BREAKDOWN, NOUT, eval_forces
-from ..forces.journal import CONTACT, JOURNAL, NO_CONTACT, penetration
-from ..forces.kinds import kind_gate
-from ..layout import BODY_I, BODY_J, TYPE
+from jointdyn.core.layout import BODY_I, BODY_J, TYPE
+from jointdyn.forces.elements import FILM_BREAKDOWN, NOUT, eval_forces
+from jointdyn.forces.journal import CONTACT, JOURNAL, NO_CONTACT, penetration
+from jointdyn.forces.kinds import kind_gate
 
 FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.OUT_COLUMNS)
 

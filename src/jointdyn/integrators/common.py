@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..dynamics import project
-from ..forces.elements import advance_memory
-from .accuracy import film_gap_unresolved
+from jointdyn.forces.elements import advance_memory
+from jointdyn.integrators.accuracy import film_gap_unresolved
+from jointdyn.multibody.dynamics import project
 
 # status codes of the compiled integrators (messages in jointdyn.simulate)
 OK = 0

@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..dynamics import rhs
-from .common import error_norm
+from jointdyn.integrators.common import error_norm
+from jointdyn.multibody.dynamics import rhs
 
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
 A21 = 1 / 5

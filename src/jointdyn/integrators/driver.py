@@ -23,14 +23,12 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
-from ..borrowed import borrowed
-from ..dynamics import rhs
-from ..forces.contact_events import onset_limit, refine_peaks
-from ..forces.elements import onset_fraction, step_limit
-from ..jacobian import jacobian_work_size, system_jacobian_into
-from .common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, write_dense
-from .dopri5 import attempt_dopri5, dopri5_accepted, dopri5_rejected, fsal_reusable
-from .radau5 import (
+from jointdyn.core.borrowed import borrowed
+from jointdyn.forces.contact_events import onset_limit, refine_peaks
+from jointdyn.forces.elements import onset_fraction, step_limit
+from jointdyn.integrators.common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, write_dense
+from jointdyn.integrators.dopri5 import attempt_dopri5, dopri5_accepted, dopri5_rejected, fsal_reusable
+from jointdyn.integrators.radau5 import (
     HHFAC,
     attempt_radau5,
     radau5_accepted,
@@ -39,8 +37,10 @@ from .radau5 import (
     tolerances,
     write_dense_radau5,
 )
-from .rodas4 import attempt_rodas4, jacobian, write_dense_rodas
-from .ros34pw2 import attempt_ros34pw2
+from jointdyn.integrators.rodas4 import attempt_rodas4, jacobian, write_dense_rodas
+from jointdyn.integrators.ros34pw2 import attempt_ros34pw2
+from jointdyn.multibody.dynamics import rhs
+from jointdyn.multibody.jacobian import jacobian_work_size, system_jacobian_into
 
 # method codes
 DOPRI5, RODAS4, ROS34PW2, RADAU5 = 0, 1, 2, 3
@@ -95,7 +95,7 @@ def new_work(
     method: int, y0, mem0, t0: float, t_out, h0: float, exact_jacobian: bool = False, ysc=None
 ) -> Work:
     """Work arrays for integrating from (t0, y0, mem0); outputs at or before t0 are filled.
-    ``exact_jacobian``: the stiff methods use :func:`jointdyn.jacobian.system_jacobian` (one
+    ``exact_jacobian``: the stiff methods use :func:`jointdyn.multibody.jacobian.system_jacobian` (one
     force evaluation, counted as one RHS evaluation) instead of forward differences. ``ysc``
     (nn,): fixed error scales of the stiff methods (``weights.clearance_scale``; None: |y_i|)."""
     nn = y0.shape[0]

@@ -18,9 +18,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..dynamics import rhs
-from .rodas4 import jacobian as system_jacobian  # noqa: F401  (the swappable Jacobian)
-from .rodas4 import lu_factor, lu_solve
+from jointdyn.integrators.rodas4 import jacobian as system_jacobian  # noqa: F401  (the swappable Jacobian)
+from jointdyn.integrators.rodas4 import lu_factor, lu_solve
+from jointdyn.multibody.dynamics import rhs
 
 SQ6 = np.sqrt(6.0)
 C1 = (4.0 - SQ6) / 10.0

@@ -24,8 +24,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..dynamics import rhs
-from .common import error_norm_scaled
+from jointdyn.integrators.common import error_norm_scaled
+from jointdyn.multibody.dynamics import rhs
 
 GAMMA = 0.25
 A = np.array(

@@ -14,9 +14,9 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from ..dynamics import rhs
-from .common import error_norm_scaled
-from .rodas4 import lu_factor, lu_solve
+from jointdyn.integrators.common import error_norm_scaled
+from jointdyn.integrators.rodas4 import lu_factor, lu_solve
+from jointdyn.multibody.dynamics import rhs
 
 GAMMA = 4.3586652150845900e-01
 A = np.array(

@@ -14,10 +14,10 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ..dynamics import rhs
-from ..forces.journal import CONTACT, IN_CONTACT, JOURNAL, NO_CONTACT, penetration
-from ..layout import BODY_I, BODY_J, TYPE
-from .common import INTERRUPTED, OK, RHS_FAILED, accept_hooks
+from jointdyn.core.layout import BODY_I, BODY_J, TYPE
+from jointdyn.forces.journal import CONTACT, IN_CONTACT, JOURNAL, NO_CONTACT, penetration
+from jointdyn.integrators.common import INTERRUPTED, OK, RHS_FAILED, accept_hooks
+from jointdyn.multibody.dynamics import rhs
 
 
 def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.inf, stop=None):

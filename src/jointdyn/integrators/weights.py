@@ -24,8 +24,8 @@ import math
 
 import numpy as np
 
-from ..forces.journal import CLR, JOURNAL
-from ..layout import ETA_I, ETA_J, TYPE, XI_I, XI_J
+from jointdyn.core.layout import ETA_I, ETA_J, TYPE, XI_I, XI_J
+from jointdyn.forces.journal import CLR, JOURNAL
 
 # rtol = 1e-8 (the default) ↔ 3e-6 of the clearance: the loosest clearance rtol of the measured
 # ladder that kept every pure-film case of [T116] ≤ 4.1e-5 of the peak moment, and 300 ≈ the

@@ -9,12 +9,15 @@ slider (body j = slider)**, so Ω = φ̇_slider + φ̇_rod − 2γ̇ = φ̇_rod 
 
 from __future__ import annotations
 
-from ..forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
-from ..forces.film_models import FILM_MODELS
-from ..forces.journal import ClearanceJoint, JournalBearing
-from ..joints.constraints import AngleDriver, Revolute, Translational
-from ..model import Model
-from ..units import rpm
+import math
+
+from jointdyn.core.constraints import AngleDriver, Revolute, Translational
+from jointdyn.film.models import FILM_MODELS
+from jointdyn.forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
+from jointdyn.forces.journal import ClearanceJoint, JournalBearing
+from jointdyn.multibody.model import Model
+from jointdyn.simulation.simulate import SimConfig
+from jointdyn.units import rpm
 
 #: benchmark parameters [T160], SI
 CRANK_LENGTH = 0.05  # [m]
@@ -129,3 +132,30 @@ def slider_crank(
             ),
         )
     return m
+
+
+def slider_crank_config(
+    joint: str,
+    revs: float = 4.0,
+    samples_per_rev: int = 720,
+    solver: str | None = None,
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    speed: float = SPEED,
+) -> SimConfig:
+    """Integration settings for ``revs`` crank revolutions at ``speed`` [rad/s]."""
+    if not (math.isfinite(revs) and revs > 0):
+        raise ValueError(f"revs = {revs!r} [revolutions]: must be finite and > 0")
+    if revs * samples_per_rev < 1:
+        raise ValueError(
+            f"revs = {revs!r} [revolutions]: must be >= 1/samples_per_rev = {1 / samples_per_rev:.3g} "
+            "(at least one output interval)"
+        )
+    t_end = revs * 2 * math.pi / abs(speed)
+    return SimConfig(
+        t_end=t_end,
+        n_out=int(round(revs * samples_per_rev)) + 1,
+        solver=solver or "auto",
+        rtol=rtol,
+        atol=atol,
+    )

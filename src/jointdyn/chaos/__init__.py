@@ -1,2 +1,0 @@
-"""Chaos and periodicity of mechanisms: ensemble statistics, Poincaré sections, bifurcation
-diagrams, Lyapunov exponents and spectra (see docs/user-guide/chaos.md)."""

@@ -1,0 +1,99 @@
+"""``jointdyn bearing-table``: the steady design table and, with ``--load``, the operating point
+(registered on :mod:`jointdyn.cli.common`'s application) [T77]."""
+
+from __future__ import annotations
+
+import csv
+import io
+import math
+import sys
+from pathlib import Path
+
+import typer
+
+from jointdyn.cli.common import app
+
+
+def _floats(text: str, name: str) -> list[float]:
+    """Comma-separated numbers, or a range ``first:last:count`` (count values, ends included)."""
+    try:
+        if ":" in text:
+            a, b, n = text.split(":")
+            k = int(n)
+            if k < 1:
+                raise ValueError
+            return [float(a) + (float(b) - float(a)) * i / max(k - 1, 1) for i in range(k)]
+        return [float(x) for x in text.split(",") if x.strip()]
+    except ValueError:
+        raise ValueError(
+            f"--{name} {text!r}: give numbers separated by commas or a range first:last:count"
+        ) from None
+
+
+def bearing_table_cmd(
+    model: str = typer.Option("finite", help="finite | long | short"),
+    cavitation: str = typer.Option("reynolds", help="reynolds (Swift–Stieber, default) | gumbel"),
+    ld: float = typer.Option(..., help="length/diameter ratio L/D (> 0)"),
+    eps: str = typer.Option(
+        "0.1,0.2,0.4,0.6,0.8,0.9,0.97", help="eccentricity ratios: 0.1,0.5,... or a range first:last:count"
+    ),
+    out: Path = typer.Option(None, help="output CSV (default: stdout)"),
+    load: float = typer.Option(None, help="with --speed etc.: solve the equilibrium for this load W in N"),
+    speed: float = typer.Option(None, help="journal speed N in rev/s (bearing fixed)"),
+    radius: float = typer.Option(None, help="journal radius R in m"),
+    clearance: float = typer.Option(None, help="radial clearance c in m"),
+    viscosity: float = typer.Option(None, help="dynamic viscosity μ in Pa·s"),
+):
+    """Steady bearing design table (Raimondi–Boyd variables) per ε; with --load/--speed/--radius/
+    --clearance/--viscosity also the operating point (ε, attitude, h_min, power loss, peak pressure)."""
+    from rich.console import Console
+    from rich.markup import escape
+
+    from jointdyn.bearing.design import bearing_table, equilibrium
+
+    console = Console(stderr=True)
+    try:
+        eps_list = _floats(eps, "eps")
+        tab = bearing_table(model, cavitation, ld, eps_list)
+        op = None
+        extra = (speed, radius, clearance, viscosity)
+        if load is not None or any(v is not None for v in extra):
+            if load is None or any(v is None for v in extra):
+                raise ValueError("--load needs --speed, --radius, --clearance and --viscosity (all SI)")
+            length = ld * 2.0 * radius
+            op = equilibrium(load, speed, radius, length, clearance, viscosity, model, cavitation)
+    except (ValueError, OSError) as err:
+        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
+        raise typer.Exit(2) from None
+    buf = io.StringIO()
+    w = csv.writer(buf)
+    w.writerow(list(tab))  # COLUMNS, then the dynamic coefficients where the film has them
+    for i in range(len(tab["eps"])):
+        w.writerow([f"{tab[c][i]:.6g}" for c in tab])
+    if out:
+        from jointdyn.core.atomic import write_text
+
+        write_text(out, buf.getvalue())
+    else:
+        sys.stdout.write(buf.getvalue())
+    if op is not None:
+        units = {
+            "eps": "-",
+            "attitude_deg": "deg",
+            "h_min": "m",
+            "friction_torque": "N·m",
+            "power_loss": "W",
+            "peak_pressure": "Pa",
+            "theta_pmax_deg": "deg",
+            "theta_end_deg": "deg",
+            "flow": "m³/s",
+            "side_flow": "m³/s",
+            "sommerfeld": "-",
+        }
+        console.print("operating point:")
+        for k, v in op.items():
+            if isinstance(v, float) and math.isfinite(v):
+                console.print(f"  {k} = {v:.6g} " + escape(f"[{units[k]}]"))
+
+
+app.command("bearing-table")(bearing_table_cmd)

@@ -1,0 +1,261 @@
+"""CLI commands for chaos and periodicity: poincare, bifurcation, lyapunov, spectrum, ensemble.
+
+Registered on the application of :mod:`jointdyn.cli.common` when imported."""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+from pathlib import Path
+
+import typer
+from rich.console import Console
+from rich.table import Table
+
+from jointdyn.cli.common import _one_line_errors, _progress, app
+
+console = Console()
+
+
+def _fail(err: Exception):
+    typer.echo(f"error: {' '.join(str(err).split())}", err=True)
+    raise typer.Exit(2) from None
+
+
+def _guarded(command):
+    """The command under the CLI's one-line errors and signal handling (Ctrl-C/SIGTERM: one
+    line, exit 130/143) [T142], like every other jointdyn command."""
+
+    @functools.wraps(command)
+    def run(*args, **kwargs):
+
+        with _one_line_errors():
+            return command(*args, **kwargs)
+
+    return run
+
+
+def _speed_of(res, body: str = "crank") -> float:
+    a = res.coordinate(body, "phi")
+    return float((a[-1] - a[0]) / (res.t[-1] - res.t[0]))
+
+
+def poincare(
+    directory: Path = typer.Argument(..., help="a run directory with results.nc (from `jointdyn run`)"),
+    element: str = typer.Option("piston_pin", help="journal element whose relative state is mapped"),
+    body: str = typer.Option("crank", help="driven body whose angle defines the section"),
+    angle: float = typer.Option(0.0, help="crank angle of the stroboscopic section [deg]"),
+    transient_revs: int = typer.Option(10, help="revolutions discarded at the start [rev]"),
+    plane: str = typer.Option(
+        None, help="plane-crossing section instead, VARIABLE=LEVEL (e.g. ey_over_c=0; upward crossings)"
+    ),
+    out: Path = typer.Option(None, help="output directory (default: DIR)"),
+):
+    """Poincaré section (stroboscopic at a crank angle, or a plane crossing) of a journal's
+    relative position and velocity: writes poincare.csv and poincare.png."""
+    from jointdyn.studies.poincare import journal_section, plot_sections
+    from jointdyn.studies.saved_runs import load_run
+
+    try:
+        res = load_run(directory)
+        w = _speed_of(res, body)
+        pl = None
+        if plane:
+            key, sep, level = plane.partition("=")
+            if not sep:
+                raise ValueError(f"--plane {plane!r}: expected VARIABLE=LEVEL")
+            pl = (key.strip(), float(level), 1)
+        T = 2 * math.pi / abs(w)
+        sec = journal_section(res, element, body, math.radians(angle), transient_revs * T, plane=pl)
+    except (ValueError, KeyError, TypeError) as err:
+        _fail(err)
+    out = Path(out or directory)
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / "poincare.csv", "w") as f:
+        names = list(sec.values)
+        f.write(",".join(["t", *names]) + "\n")
+        for i in range(sec.t.size):
+            f.write(",".join(f"{v:.10g}" for v in [sec.t[i], *(sec.values[k][i] for k in names)]) + "\n")
+    where = f"plane {plane}" if plane else f"crank angle {angle:g}°"
+    plot_sections({res.system.name: sec}, out / "poincare.png", f"section at {where}")
+    console.print(f"{sec.t.size} section points; wrote {out}/poincare.csv, poincare.png")
+
+
+def bifurcation(
+    spec: Path = typer.Argument(..., help="diagram file (TOML): [base], [bifurcation], optional [dask]"),
+    out: Path = typer.Option(Path("out/bifurcation"), help="output directory"),
+    workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
+    scheduler: str = typer.Option(None, help="Dask scheduler tcp://HOST:PORT (default: local processes)"),
+    variable: str = typer.Option("ex_over_c", help="section variable drawn against the parameter"),
+    resume: bool = typer.Option(False, help="keep the finished values of the same diagram in --out/sweep"),
+):
+    """Bifurcation diagram over one parameter, run as a sweep (DIR/sweep: one case file per
+    value): writes bifurcation.nc and bifurcation.png."""
+    from jointdyn.studies.bifurcation import VARIABLES, load_bifurcation, plot_bifurcation, run_bifurcation
+
+    if variable not in VARIABLES:
+        _fail(ValueError(f"--variable {variable!r}: valid: {list(VARIABLES)}"))
+    try:
+        sp = load_bifurcation(spec)
+        with _progress("bifurcation") as prog:
+            task = prog.add_task(f"{len(sp.values)} values of {sp.parameter}", total=len(sp.values))
+            ds = run_bifurcation(
+                sp,
+                out,
+                workers=workers,
+                scheduler=scheduler,
+                progress=lambda d, n: prog.update(task, completed=d),
+                resume=resume,
+            )
+    except ValueError as err:
+        _fail(err)
+    plot_bifurcation(ds, Path(out) / "bifurcation.png", variable)
+    failed = int((ds["error"] != "").sum())
+    console.print(f"wrote {out}/bifurcation.nc, bifurcation.png ({len(sp.values)} values, {failed} failed)")
+
+
+def lyapunov(
+    model: str = typer.Argument(..., help="slider-crank or a model file FILE.toml"),
+    joint: str = typer.Option("dry", help="slider-crank piston-pin joint kind"),
+    clearance: float = typer.Option(0.5e-3, help="slider-crank radial clearance [m]"),
+    revs: float = typer.Option(30.0, help="slider-crank: averaging revolutions [rev]"),
+    transient_revs: float = typer.Option(10.0, help="slider-crank: revolutions before averaging [rev]"),
+    per_rev: int = typer.Option(16, help="slider-crank: renormalisations per revolution [-]"),
+    tau: float = typer.Option(None, help="model file: renormalisation interval [s]"),
+    segments: int = typer.Option(None, help="model file: number of renormalisation intervals [-]"),
+    transient: float = typer.Option(0.0, help="model file: time before averaging [s]"),
+    time_scale: float = typer.Option(None, help="velocity weight of the deviation norm [s] (default 1/ω)"),
+    d0: float = typer.Option(1e-8, help="renormalised separation [norm units: m, rad]"),
+    solver: str = typer.Option("auto", help="integrator"),
+    rtol: float = typer.Option(1e-9, help="relative tolerance [-]"),
+    atol: float = typer.Option(1e-12, help="absolute tolerance [SI]"),
+    discard: int = typer.Option(10, help="first renormalisation intervals left out of the average [-]"),
+    seed: int = typer.Option(1, help="seed of the initial deviation direction"),
+    set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
+    out: Path = typer.Option(Path("out/lyapunov"), help="output directory"),
+):
+    """Largest Lyapunov exponent (Benettin two-trajectory renormalisation): writes summary.json
+    (largest_lyapunov_exponent [1/s] and its standard error), lyapunov.csv and lyapunov.png."""
+    from jointdyn.errors import ModelError, SimulationError
+    from jointdyn.studies.lyapunov import plot_running, system_lyapunov
+
+    try:
+        if model.endswith(".toml"):
+            from jointdyn.io.modelfile import load_model
+
+            m, _ = load_model(model, set_)
+            system = m.compile()
+            if tau is None or segments is None:
+                raise ValueError("a model file needs --tau [s] and --segments [-]")
+            ts = 1.0 if time_scale is None else time_scale
+            kw = {"tau": tau, "n_segments": segments, "transient": transient}
+        elif model == "slider-crank":
+            from jointdyn.models import slider_crank as sc
+
+            kwj = {} if joint == "perfect" else {"clearance": clearance}
+            system = sc.slider_crank(joint, **kwj).compile()
+            T = 2 * math.pi / sc.SPEED
+            ts = 1.0 / sc.SPEED if time_scale is None else time_scale
+            kw = {
+                "tau": T / per_rev,
+                "n_segments": int(round(revs * per_rev)),
+                "transient": transient_revs * T,
+            }
+        else:
+            raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
+        res = system_lyapunov(
+            system,
+            d0=d0,
+            time_scale=ts,
+            solver=solver,
+            rtol=rtol,
+            atol=atol,
+            discard_segments=discard,
+            seed=seed,
+            **kw,
+        )
+    except (ModelError, ValueError, SimulationError, FloatingPointError) as err:
+        _fail(err)
+    out.mkdir(parents=True, exist_ok=True)
+    summ = {"model": system.name, **res.summary()}
+    (out / "summary.json").write_text(json.dumps(summ, indent=2))
+    with open(out / "lyapunov.csv", "w") as f:
+        f.write("t,segment_rate,running_estimate\n")
+        for row in zip(res.times, res.segment_rates, res.running):
+            f.write(",".join(f"{v:.10g}" for v in row) + "\n")
+    plot_running(res, out / "lyapunov.png", f"{system.name}: largest Lyapunov exponent")
+    console.print(
+        f"{system.name}: λ₁ = {res.exponent:.6g} ± {res.stderr:.2g} 1/s (1 s.e., {res.batches} batches); "
+        f"wrote {out}/summary.json, lyapunov.csv, lyapunov.png"
+    )
+
+
+def spectrum(
+    directory: Path = typer.Argument(..., help="a run directory with results.nc (from `jointdyn run`)"),
+    transient_revs: int = typer.Option(2, help="revolutions discarded at the start [rev]"),
+    max_harmonic: float = typer.Option(40.0, help="highest harmonic drawn [-]"),
+    out: Path = typer.Option(None, help="output directory (default: DIR)"),
+):
+    """Amplitude spectra of the crank moment, slider acceleration and joint force in harmonics
+    of the crank speed: writes spectrum.csv and spectrum.png."""
+    from jointdyn.studies.saved_runs import load_run
+    from jointdyn.studies.spectra import UNITS, plot_spectra, run_spectra
+
+    try:
+        res = load_run(directory)
+        sp = run_spectra(res, transient_revs)
+    except (ValueError, KeyError) as err:
+        _fail(err)
+    out = Path(out or directory)
+    out.mkdir(parents=True, exist_ok=True)
+    names = [k for k in UNITS if k in sp]
+    with open(out / "spectrum.csv", "w") as f:
+        f.write(",".join(["harmonic", *names]) + "\n")
+        for i in range(sp["harmonic"].size):
+            f.write(",".join(f"{v:.10g}" for v in [sp["harmonic"][i], *(sp[k][i] for k in names)]) + "\n")
+    plot_spectra(sp, out / "spectrum.png", max_harmonic, res.system.name)
+    console.print(f"{sp['revs']} revolutions; wrote {out}/spectrum.csv, spectrum.png")
+
+
+def ensemble(
+    joint: str = typer.Option("dry", help="slider-crank piston-pin joint kind"),
+    rtols: str = typer.Option("1e-7,1e-8,1e-9", help="comma-separated relative tolerances [-]"),
+    replicas: int = typer.Option(1, help="runs per tolerance (replica r > 0: perturbed initial velocities)"),
+    revs: int = typer.Option(60, help="revolutions per run [rev]"),
+    transient_revs: int = typer.Option(10, help="revolutions discarded [rev]"),
+    workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
+    out: Path = typer.Option(Path("out/ensemble"), help="output directory"),
+):
+    """Distributions of per-revolution quantities of the slider-crank (median, 5–95 %) with a
+    convergence check across tolerances: writes ensemble.json."""
+    from jointdyn.studies.ensemble import ensemble_table, slider_crank_ensemble
+
+    try:
+        r = slider_crank_ensemble(
+            joint, tuple(float(v) for v in rtols.split(",")), replicas, revs, transient_revs, workers=workers
+        )
+    except ValueError as err:  # SimulationError, Interrupted: the CLI wrapper (exit 1, 130/143)
+        _fail(err)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "ensemble.json").write_text(json.dumps(r, indent=2))
+    tab = Table(title=f"slider-crank ({joint}), revolutions {transient_revs}–{revs}, rtol {rtols}")
+    for c in ("quantity", "unit", "median", "5 %", "95 %", "n", "shift", "converged"):
+        tab.add_column(c)
+    for row in ensemble_table(r):
+        tab.add_row(
+            row["quantity"],
+            row["unit"],
+            f"{row['median']:.4g}",
+            f"{row['p5']:.4g}",
+            f"{row['p95']:.4g}",
+            str(row["n"]),
+            f"{row['shift']:.3f}",
+            str(row["converged"]),
+        )
+    console.print(tab)
+    console.print(f"wrote {out}/ensemble.json")
+
+
+for _command in (poincare, bifurcation, lyapunov, spectrum, ensemble):
+    app.command()(_guarded(_command))

@@ -1,0 +1,243 @@
+"""The run commands: ``run``, ``reproduce`` and ``sweep``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from jointdyn.cli.common import _one_line_errors, _progress, app, console
+from jointdyn.studies import options
+
+_RA = options.run_args()
+
+
+def _arg_help(name: str, text: str) -> str:
+    """Help of a slider-crank builder argument: its unit and default from the builder."""
+    default, unit = options.builder_args()[name]
+    return f"{text} [{unit}] (default {default:.6g})"
+
+
+_JOINT_HELP = "piston-pin joint kind: " + ", ".join(options.joints())
+
+
+def _solver_help() -> str:
+    from jointdyn.integrators import SOLVERS
+
+    return "integrator: auto (radau5 for a lubricated joint, else dopri5), " + ", ".join(SOLVERS)
+
+
+#: CLI spelling of the slider-crank builder arguments
+OPTION_NAMES = {k: "--" + k.replace("_", "-") for k in (*options.builder_args(), *options.FLAGS)}
+OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("joint", "revs", "samples_per_rev", "rtol", "atol")}
+
+
+@app.command()
+def run(
+    model: str = typer.Argument(..., help="shipped model name (slider-crank) or a model file FILE.toml"),
+    joint: str = typer.Option(None, help=_JOINT_HELP + " (default perfect)"),
+    revs: float = typer.Option(None, help=f"crank revolutions to simulate [rev] (default {_RA['revs']:g})"),
+    samples_per_rev: int = typer.Option(
+        None, help=f"output samples per crank revolution [-] (default {_RA['samples_per_rev']})"
+    ),
+    out: Path = typer.Option(Path("out/run"), help="output directory (must be empty or a previous run's)"),
+    overwrite: bool = typer.Option(False, help="replace jointdyn's files from a previous run in --out"),
+    solver: str = typer.Option(None, help=_solver_help()),
+    rtol: float = typer.Option(None, help=f"relative tolerance [-] (default {_RA['rtol']:g})"),
+    atol: float = typer.Option(None, help=f"absolute tolerance [SI of each state] (default {_RA['atol']:g})"),
+    clearance: float = typer.Option(
+        None, help=_arg_help("clearance", "radial clearance c of an imperfect joint")
+    ),
+    viscosity: float = typer.Option(None, help=_arg_help("viscosity", "lubricant dynamic viscosity")),
+    length: float = typer.Option(None, help=_arg_help("length", "bearing length")),
+    friction: float = typer.Option(None, help="Ambrósio friction coefficient in contact [-] (default 0)"),
+    contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact"),
+    shear: bool = typer.Option(
+        None,
+        "--shear/--no-shear",
+        help="lubricated joint: apply the film's shear torques (default: off, as the paper)",
+    ),
+    bushing: str = typer.Option(
+        None, help="body carrying the bearing hole: rod (default, as the paper) or slider"
+    ),
+    asperity_height: float = typer.Option(None, help="with --contact: contact starts at h_min < this [m]"),
+    restitution: float = typer.Option(
+        None, help=_arg_help("restitution", "dry joint: coefficient of restitution")
+    ),
+    set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
+):
+    """Simulate a shipped mechanism or a model file; write results.nc, timeseries.csv,
+    summary.json, figures and manifest.json."""
+    from jointdyn.io.rundir import OutputDir
+
+    sc_opts = {
+        "joint": joint,
+        "revs": revs,
+        "samples_per_rev": samples_per_rev,
+        "solver": solver,
+        "rtol": rtol,
+        "atol": atol,
+        "clearance": clearance,
+        "viscosity": viscosity,
+        "length": length,
+        "friction": friction,
+        "asperity_height": asperity_height,
+        "restitution": restitution,
+        "shear": shear,
+        "bushing": bushing,
+    }
+    given = {k: v for k, v in sc_opts.items() if v is not None} | ({"contact": True} if contact else {})
+    is_file = model.endswith(".toml") or Path(model).is_file()
+    od = None
+    with _one_line_errors(out):
+        if is_file:
+            if given:
+                names = ", ".join(OPTION_NAMES.get(k, "--" + k) for k in given)
+                raise ValueError(
+                    f"{names}: apply to the shipped slider-crank; for a model file use --set a.b=VALUE"
+                )
+            from jointdyn.studies.runs import prepare_model_file, run_model_file
+
+            prepared = prepare_model_file(model, set_)
+            options.check_memory(prepared[1], prepared[2].n_out, "simulation.n_out")
+            od = OutputDir(out, "run", prepared[3]).claim(overwrite)
+            with _progress("run") as prog:
+                task = prog.add_task(prepared[0].name, total=1.0)
+                res = run_model_file(
+                    model, od, set_, prepared=prepared, progress=lambda f: prog.update(task, completed=f)
+                )
+            files = ", ".join([*od.files, "manifest.json"])
+            console.print(
+                f"{escape(res.system.name)}: {len(res.t)} samples, {res.stats['rhs_evaluations']} RHS "
+                f"evaluations, {res.wall_time:.3f} s; wrote {escape(str(out))}/: {files}"
+            )
+            return
+        if set_:
+            raise ValueError("--set applies to model files only")
+        if model != "slider-crank":
+            raise ValueError(
+                f"MODEL {model!r}: unknown shipped model and not a file; valid: slider-crank or FILE.toml"
+            )
+        _run_slider_crank(given, out, overwrite)
+
+
+def _run_slider_crank(given: dict, out: Path, overwrite: bool) -> None:
+    from jointdyn.integrators import SOLVERS
+    from jointdyn.io.rundir import OutputDir
+    from jointdyn.models.slider_crank import slider_crank
+    from jointdyn.studies.runs import run_slider_crank, slider_crank_config
+
+    joint = given.pop("joint", "perfect")
+    ra = options.run_args()
+    run_kw = {k: given.pop(k) for k in ("solver", "rtol", "atol", "samples_per_rev") if k in given}
+    revs = given.pop("revs", ra["revs"])
+    model_kw = options.slider_crank_args(joint, given, OPTION_NAMES)
+    options.check_run(
+        revs, run_kw.get("samples_per_rev", ra["samples_per_rev"]), **_tols(run_kw), names=OPTION_NAMES
+    )
+    if run_kw.get("solver", "auto") not in ("auto", *SOLVERS):
+        raise ValueError(f"--solver {run_kw['solver']!r}: unknown; valid: auto, {', '.join(SOLVERS)}")
+    cfg = slider_crank_config(joint, revs, **run_kw)
+    options.check_memory(slider_crank(joint, **model_kw), cfg.n_out, "--revs × --samples-per-rev")
+    spec = {"model": "slider-crank", "joint": joint, "revs": revs, **run_kw} | {
+        k: given[k] for k in given if k not in run_kw
+    }
+    od = OutputDir(out, "run", spec).claim(overwrite)
+    with _progress("run") as prog:
+        task = prog.add_task(f"slider-crank ({joint})", total=1.0)
+        _, _, summary = run_slider_crank(
+            joint,
+            revs,
+            out=od,
+            progress=lambda f: prog.update(task, completed=f),
+            model_kw=model_kw,
+            **run_kw,
+        )
+    tab = Table(title=f"slider-crank, {joint} piston pin ({revs:g} rev)")
+    tab.add_column("quantity")
+    tab.add_column("value", justify="right")
+    for k, v in summary.items():
+        if not isinstance(v, dict):
+            tab.add_row(k, f"{v:.6g}" if isinstance(v, float) else escape(str(v)))
+    console.print(tab)
+    console.print(f"wrote {escape(str(out))}/: {', '.join(od.files)}, manifest.json")
+
+
+def _tols(run_kw: dict) -> dict:
+    return {k: run_kw[k] for k in ("rtol", "atol") if k in run_kw}
+
+
+@app.command()
+def reproduce(
+    paper: str = typer.Argument(..., help="which paper: alshaer2005"),
+    out: Path = typer.Option(Path("out/alshaer2005"), help="output directory"),
+    quick: bool = typer.Option(False, help="1 revolution instead of 4 (CI smoke run)"),
+    beyond: bool = typer.Option(True, help="also run the beyond-the-paper cases"),
+):
+    """Run the paper's comparison (perfect, dry, Ott, π-film) and write figures + report.html;
+    the full run also reports the dry case as a distribution (ensemble_dry.md)."""
+    from jointdyn.io.rundir import check_path
+    from jointdyn.studies.reproduce import BEYOND_CASES, PAPER_CASES, reproduce_alshaer2005, summary_markdown
+
+    with _one_line_errors():
+        if paper != "alshaer2005":
+            raise ValueError(f"PAPER {paper!r}: unknown; valid: alshaer2005")
+        check_path(out)
+        cases = PAPER_CASES + (BEYOND_CASES if beyond else ())
+        with _progress("reproduce") as prog:
+            names = [c.name for c in cases] + ([] if quick else ["dry ensemble"])
+            tasks = {n: prog.add_task(n, total=1.0) for n in names}
+            runs = reproduce_alshaer2005(
+                out,
+                quick=quick,
+                beyond=beyond,
+                progress=lambda name, f: prog.update(tasks[name], completed=f),
+            )
+    console.print(escape(summary_markdown(runs)))
+    if (Path(out) / "ensemble_dry.md").exists():  # the dry case as a distribution (full runs)
+        console.print(escape((Path(out) / "ensemble_dry.md").read_text(encoding="utf-8")))
+    console.print(f"wrote {escape(str(out))}/report.html, summary.csv, <case>.csv and the figures")
+
+
+@app.command()
+def sweep(
+    spec: Path = typer.Argument(
+        ..., help="sweep file (TOML): [base], [grid]/[zip]/[sample], [output], [dask]"
+    ),
+    out: Path = typer.Option(
+        Path("out/sweep"), help="output directory (empty, or this sweep's with --resume)"
+    ),
+    resume: bool = typer.Option(
+        False, help="keep finished cases of the same sweep, run only the missing ones"
+    ),
+    overwrite: bool = typer.Option(False, help="replace jointdyn's files from a previous sweep in --out"),
+    scheduler: str = typer.Option(
+        None, help="Dask scheduler address tcp://HOST:PORT (default: local processes)"
+    ),
+    workers: int = typer.Option(None, help="local worker processes [-] (default: all cores)"),
+):
+    """Run a parameter study; writes DIR/cases/*.json per case, DIR/sweep.nc and DIR/manifest.json."""
+    from jointdyn.studies.sweep import load_sweep, run_sweep
+
+    with _one_line_errors(out):
+        if resume and overwrite:
+            raise ValueError("--resume and --overwrite exclude each other")
+        if workers is not None and workers < 1:
+            raise ValueError(f"--workers = {workers} [-]: must be an integer >= 1")
+        sp = load_sweep(spec)
+        n = len(sp.cases())
+        with _progress("sweep") as prog:
+            task = prog.add_task(f"{n} cases", total=n)
+            ds = run_sweep(
+                sp,
+                out,
+                resume=resume,
+                scheduler=scheduler,
+                workers=workers,
+                overwrite=overwrite,
+                progress=lambda done, total: prog.update(task, completed=done),
+            )
+    failed = int((ds["error"] != "").sum())
+    console.print(f"wrote {escape(str(out))}/sweep.nc ({n} cases, {failed} failed)")

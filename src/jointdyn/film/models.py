@@ -1,0 +1,244 @@
+"""Film models (compiled scalar kernels) and their registry ``FILM_MODELS``: long-bearing Ott and
+π-film (alshaer2005), short-bearing π-film, and the tabulated finite-length bearing.
+
+Each model is a frozen dataclass registered in ``FILM_MODELS`` with its integer ``code``, its
+compiled ``kernel``, its theory ``tag`` and its ``PARAMS`` (names of its own real-valued fields,
+packed in order into the block ``p``; empty for the models below). A tabulated model also has a
+``table(length, journal_radius)`` method. All kernels share one signature
+``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft)``:
+
+* xi        eccentricity ratio ξ = |e|/c, 0 ≤ ξ < 1 [-]
+* xi_dot    ξ̇ = dξ/dt [1/s]
+* xi_Omega  the product ξΩ, Ω = ω_J + ω_B − 2γ̇ (global rates, [T20]); the product keeps
+            ξ = 0 regular ([T24], Cartesian form B = ξΩ/(2+ξ²)) [rad/s]
+* mu        dynamic viscosity μ [Pa·s]
+* R         journal radius [m]
+* L         bearing length [m]
+* c         radial clearance [m]
+* p         the model's own parameter block (its ``PARAMS``, SI) [-]
+* table     float64 2-D array (rows, 2) used only by tabulated models (``finite``) [-]
+
+F_r is the film force on the journal along u = e/|e| (bearing centre → journal centre), F_t along
+t = ẑ × u [N] (conventions of docs/theory.md). Theory: docs/theory.md [T20–T39].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from jointdyn.core.layout import block_width, check_codes, params_of
+from jointdyn.film import jacobians as _jac
+from jointdyn.film.finite import DEFAULT_CAVITATION, finite_force
+from jointdyn.film.kernels import (  # noqa: F401  (the kernels are part of this module's API)
+    ALSHAER2005,
+    FINITE,
+    OTT,
+    SHORT,
+    film_force,
+    ott_force,
+    pi_film_force,
+    short_force,
+)
+
+
+@dataclass(frozen=True)
+class Ott:
+    """Ott's long-bearing solution (paper eqs 1–5, (2−ξ²) typo corrected to (1−ξ²); [T163]).
+    An approximation of the π-film (exact for steady load and ξ → 0; off by 5–25 % at moderate ξ
+    and diverging for ξ̇ < 0 near the wall) [T25]."""
+
+    code: ClassVar[int] = OTT
+    kernel: ClassVar = ott_force
+    tag: ClassVar[str] = "T25"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
+
+
+@dataclass(frozen=True)
+class Alshaer2005:
+    """The paper's π-film long-bearing solution (eqs 6–9 with typos T1–T7 corrected; [T163]):
+    exact for the long-bearing Reynolds equation on a half film starting at θ₁ [T21]."""
+
+    code: ClassVar[int] = ALSHAER2005
+    kernel: ClassVar = pi_film_force
+    tag: ClassVar[str] = "T21"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
+
+
+@dataclass(frozen=True)
+class Short:
+    """Short-bearing (Ocvirk) π-film: valid for L/D ≲ 0.5 (a PhysicsWarning is issued beyond) [T35]."""
+
+    code: ClassVar[int] = SHORT
+    kernel: ClassVar = short_force
+    tag: ClassVar[str] = "T35"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
+    max_length_over_diameter: ClassVar[float] = 0.5
+
+
+@dataclass(frozen=True)
+class Finite:
+    """Finite-length bearing: 2-D Reynolds equation solved numerically, tabulated per L/D and
+    cavitation condition (built once, cached on disk) [T36–T38, T70–T80]."""
+
+    cavitation: str = DEFAULT_CAVITATION
+    """film rupture condition, a name in :mod:`jointdyn.film.cavitation`'s registry: ``gumbel``
+    (half-Sommerfeld: negative pressures clipped), ``reynolds`` (Swift–Stieber: p ≥ 0 and
+    ∂p/∂θ = 0 at rupture, the classical design tables) or a registered plugin [T88]"""
+    code: ClassVar[int] = FINITE
+    kernel: ClassVar = finite_force
+    tag: ClassVar[str] = "T36"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
+
+    def __post_init__(self):
+        from jointdyn.film.cavitation import names
+
+        if self.cavitation not in names():
+            raise ValueError(f"Finite.cavitation = {self.cavitation!r}: unknown; valid: {list(names())}")
+
+    def table(self, length: float, journal_radius: float) -> np.ndarray:
+        """The force table of a bearing of this length and journal radius [m, m]."""
+        from jointdyn.film.finite import build_table
+
+        return build_table(length / (2.0 * journal_radius), cavitation=self.cavitation)
+
+
+FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005, "short": Short, "finite": Finite}
+check_codes(FILM_MODELS, "film model")
+FILM_WIDTH = block_width(FILM_MODELS)
+NONE = -1  # no film (dry clearance joint)
+
+
+def film_model(film):
+    """The film-model instance for ``film``: a registry name or an instance of a registered
+    model (ValueError listing the valid names otherwise)."""
+    if isinstance(film, str):
+        if film not in FILM_MODELS:
+            raise ValueError(f"film model {film!r} is unknown; valid names: {', '.join(FILM_MODELS)}")
+        return FILM_MODELS[film]()
+    if type(film) not in FILM_MODELS.values():
+        raise ValueError(f"film = {film!r}: not a film model; valid names: {', '.join(FILM_MODELS)}")
+    return film
+
+
+def film_name(film) -> str:
+    """Registry name of a film model given by name or instance."""
+    m = film_model(film)
+    return next(k for k, v in FILM_MODELS.items() if v is type(m))
+
+
+_UNITS = {
+    "xi": "-",
+    "xi_dot": "1/s",
+    "gamma": "rad",
+    "gamma_dot": "rad/s",
+    "omega_journal": "rad/s",
+    "omega_bearing": "rad/s",
+    "viscosity": "Pa·s",
+    "length": "m",
+    "radius": "m",
+    "clearance": "m",
+}
+_NO_TABLE = np.zeros((1, 2))
+
+
+def film_forces(
+    model, xi, xi_dot, gamma, gamma_dot, omega_journal, omega_bearing, viscosity, length, radius, clearance
+):
+    """Film force on the journal for arrays of states (numpy broadcasting, SI, global rates).
+
+    model          name in ``FILM_MODELS`` or a film-model instance
+    xi             eccentricity ratio, 0 ≤ ξ < 1 [-]
+    xi_dot         dξ/dt [1/s]
+    gamma          line-of-centres angle γ = atan2(e_y, e_x) [rad]
+    gamma_dot      dγ/dt in the global frame [rad/s]
+    omega_journal  absolute angular velocity of the journal ω_J [rad/s]
+    omega_bearing  absolute angular velocity of the bearing ω_B [rad/s]
+    viscosity      dynamic viscosity μ > 0 [Pa·s]
+    length         bearing length L > 0 [m]
+    radius         journal radius R > 0 [m]
+    clearance      radial clearance c > 0 [m]
+
+    Returns ``dict(Fr, Ft, Fx, Fy)`` [N] with Ω = ω_J + ω_B − 2γ̇ [T20],
+    F_x = F_r cosγ − F_t sinγ, F_y = F_r sinγ + F_t cosγ [T27]. Raises ``ValueError`` naming the
+    parameter, its unit, the allowed range and the flat index of the first bad row.
+    """
+    fm = film_model(model)
+    args = dict(
+        xi=xi,
+        xi_dot=xi_dot,
+        gamma=gamma,
+        gamma_dot=gamma_dot,
+        omega_journal=omega_journal,
+        omega_bearing=omega_bearing,
+        viscosity=viscosity,
+        length=length,
+        radius=radius,
+        clearance=clearance,
+    )
+    try:
+        arr = dict(zip(args, np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in args.values()])))
+    except ValueError as err:
+        raise ValueError(f"film_forces: inputs do not broadcast to one shape ({err})") from None
+    for name, v in arr.items():
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise ValueError(
+                f"{name} [{_UNITS[name]}] must be finite; got {v.flat[bad[0]]!r} at index {bad[0]}"
+            )
+    for name in ("viscosity", "length", "radius", "clearance"):
+        bad = np.flatnonzero(arr[name] <= 0.0)
+        if bad.size:
+            raise ValueError(
+                f"{name} [{_UNITS[name]}] must be > 0; got {arr[name].flat[bad[0]]!r} at index {bad[0]}"
+            )
+    x = arr["xi"]
+    bad = np.flatnonzero((x < 0.0) | (x >= 1.0))
+    if bad.size:
+        raise ValueError(f"xi [-] must be in [0, 1); got {x.flat[bad[0]]!r} at index {bad[0]}")
+    code = fm.code
+    p = np.zeros(FILM_WIDTH)
+    p[: len(fm.PARAMS)] = params_of(fm)
+    xi_om = x * (arr["omega_journal"] + arr["omega_bearing"] - 2.0 * arr["gamma_dot"])  # [T20]
+    fr = np.empty(x.shape)
+    ft = np.empty(x.shape)
+    tables = {}
+    if hasattr(fm, "table"):  # one table per distinct (length, radius)
+        for i in range(x.size):
+            key = (float(arr["length"].flat[i]), float(arr["radius"].flat[i]))
+            if key not in tables:
+                tables[key] = fm.table(*key)
+    for i in range(x.size):
+        tab = tables.get((float(arr["length"].flat[i]), float(arr["radius"].flat[i])), _NO_TABLE)
+        fr.flat[i], ft.flat[i] = film_force(
+            code,
+            x.flat[i],
+            arr["xi_dot"].flat[i],
+            xi_om.flat[i],
+            arr["viscosity"].flat[i],
+            arr["radius"].flat[i],
+            arr["length"].flat[i],
+            arr["clearance"].flat[i],
+            p,
+            tab,
+        )
+    g = arr["gamma"]
+    return {
+        "Fr": fr,
+        "Ft": ft,
+        "Fx": fr * np.cos(g) - ft * np.sin(g),
+        "Fy": fr * np.sin(g) + ft * np.cos(g),
+    }  # [T27]
+
+
+# -- optional capability: exact Jacobians [T90–T97] ------------------------------------------------
+# ``jacobian(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft, ∂Fr/∂ξ, ∂Fr/∂ξ̇, ∂Fr/∂(ξΩ),
+# ∂Ft/∂ξ, ∂Ft/∂ξ̇, ∂Ft/∂(ξΩ))``; a model without one is differentiated by finite differences in the
+# system Jacobian (``element_jacobians.fallback_elements`` names such elements).
+
+Ott.jacobian = _jac.ott_jac  # type: ignore[attr-defined]
+Alshaer2005.jacobian = _jac.pi_film_jac  # type: ignore[attr-defined]
+Short.jacobian = _jac.short_jac  # type: ignore[attr-defined]
+Finite.jacobian = _jac.finite_jac  # type: ignore[attr-defined]

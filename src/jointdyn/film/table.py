@@ -1,0 +1,126 @@
+"""Film forces for a CSV table of bearing states, streamed in blocks (bounded memory).
+
+The required columns are the parameters of :func:`jointdyn.film.models.film_forces`
+(after ``model``), read from its signature; their units from its docstring. Rows are numbered
+from 1 (the first data row after the header), as in every message.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import inspect
+import math
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from jointdyn.core import atomic, interrupts
+from jointdyn.film.models import FILM_MODELS, film_forces
+
+BLOCK = 4096  # rows per evaluation: memory stays O(BLOCK) whatever the file size
+OUT_COLUMNS = ("Fr", "Ft", "Fx", "Fy")
+
+
+def columns() -> tuple[str, ...]:
+    """The input columns, in the order of ``film_forces``'s parameters."""
+    return tuple(p for p in inspect.signature(film_forces).parameters if p != "model")
+
+
+def units() -> dict[str, str]:
+    """Unit of each input column, from ``film_forces``'s docstring lines ``name ... [unit]``."""
+    doc = film_forces.__doc__ or ""
+    found = {m.group(1): m.group(2) for m in re.finditer(r"^\s*(\w+)\s.*\[([^\]]+)\]\s*$", doc, re.M)}
+    return {c: found.get(c, "SI") for c in columns()}
+
+
+def _header(reader, src) -> list[str]:
+    try:
+        head = next(reader)
+    except StopIteration:
+        raise ValueError(
+            f"{src}: empty file; the first line must name the columns {list(columns())}"
+        ) from None
+    head = [h.strip() for h in head]
+    dup = sorted({h for h in head if head.count(h) > 1})
+    if dup:
+        raise ValueError(f"{src}: duplicate column(s) {dup} in the header")
+    missing = [c for c in columns() if c not in head]
+    if missing:
+        raise ValueError(f"{src}: missing column(s) {missing}; required: {list(columns())}")
+    return head
+
+
+def _parse(rows, head, start: int, src) -> np.ndarray:
+    """Rows -> (len(rows), n_columns) array; row numbers from ``start`` (1-based)."""
+    idx = [head.index(c) for c in columns()]
+    out = np.empty((len(rows), len(idx)))
+    for r, row in enumerate(rows):
+        n = start + r
+        if len(row) != len(head):
+            raise ValueError(f"{src}: row {n} has {len(row)} fields, the header has {len(head)}")
+        for k, j in enumerate(idx):
+            try:
+                v = float(row[j])
+            except ValueError:
+                raise ValueError(f"{src}: row {n}, column {head[j]!r}: {row[j]!r} is not a number") from None
+            if not math.isfinite(v):
+                raise ValueError(f"{src}: row {n}, column {head[j]!r}: non-finite value {v!r}")
+            out[r, k] = v
+    return out
+
+
+def _forces(model, data: np.ndarray, start: int, src) -> dict:
+    try:
+        return film_forces(model, *data.T)
+    except ValueError:
+        pass
+    for r in range(data.shape[0]):  # find the 1-based row of the first bad state
+        try:
+            film_forces(model, *data[r : r + 1].T)
+        except ValueError as err:
+            raise ValueError(f"{src}: row {start + r}: {str(err).replace(' at index 0', '')}") from None
+    raise AssertionError("unreachable")  # pragma: no cover
+
+
+def film_force_table(src, model, out=None) -> int:
+    """Read states from CSV ``src``, write them with ``Fr, Ft, Fx, Fy`` [N] appended to ``out``
+    (a path, written atomically; None = stdout). Returns the number of rows."""
+    if type(model) not in FILM_MODELS.values() and (not isinstance(model, str) or model not in FILM_MODELS):
+        raise ValueError(f"--model {model!r} is unknown; valid: {', '.join(FILM_MODELS)}")
+    src = Path(src)
+    if src.is_dir():
+        raise ValueError(f"{src}: is a directory, not a CSV file")
+    with contextlib.ExitStack() as stack:
+        try:
+            fin = stack.enter_context(open(src, newline="", encoding="utf-8-sig"))  # a BOM is not a name
+        except FileNotFoundError:
+            raise ValueError(f"{src}: no such file") from None
+        if out is None:
+            fout = sys.stdout
+        else:
+            tmp = stack.enter_context(atomic.replacing(Path(out)))
+            fout = stack.enter_context(open(tmp, "w", newline="", encoding="utf-8"))
+        reader, writer = csv.reader(fin), csv.writer(fout)
+        try:
+            head = _header(reader, src)
+            writer.writerow(head + list(OUT_COLUMNS))
+            n = 0
+            while True:
+                block = [row for _, row in zip(range(BLOCK), reader) if row]
+                if not block:
+                    break
+                F = _forces(model, _parse(block, head, n + 1, src), n + 1, src)
+                for i, row in enumerate(block):
+                    writer.writerow(row + [f"{F[k][i]:.10g}" for k in OUT_COLUMNS])
+                n += len(block)
+                interrupts.check()
+        except UnicodeDecodeError as err:
+            raise ValueError(f"{src}: not a UTF-8 text file ({err.reason})") from None
+        except csv.Error as err:
+            raise ValueError(f"{src}: line {reader.line_num}: malformed CSV ({err})") from None
+        if n == 0:
+            raise ValueError(f"{src}: no data rows")
+    return n

@@ -1,0 +1,107 @@
+"""The compiled, frozen form of a model (flat arrays for the compiled kernels) and the state."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+import numpy as np
+
+
+class Packed(NamedTuple):
+    """What the compiled kernels receive (see :mod:`jointdyn.multibody.dynamics`), read by field name."""
+
+    minv: np.ndarray
+    """(n,) inverse masses and inertias [1/kg, 1/(kg·m²)]"""
+    q0_force: np.ndarray
+    """(n,) constant generalised forces (gravity) [N, N·m]"""
+    cint: np.ndarray
+    """constraint integer table (``joints.constraints`` layouts)"""
+    creal: np.ndarray
+    """constraint real table [SI]"""
+    fint: np.ndarray
+    """force-element integer table (``forces.elements`` layouts)"""
+    freal: np.ndarray
+    """force-element real table [SI]"""
+    tables: np.ndarray
+    """(n_tables, rows, 2) film and force tables"""
+    n_rows: int
+    """number of constraint rows m"""
+    stab: np.ndarray
+    """(1,) Baumgarte rate a [1/s]"""
+    ws: np.ndarray
+    """preallocated float workspace (``dynamics.workspace_size``)"""
+    kinds: tuple = ()
+    """the element kinds present (``forces.elements.kinds_of``): a type-level switch, so the
+    compiled kernels contain only these kinds [T175]"""
+
+
+@dataclass(frozen=True)
+class System:
+    """Frozen, compiled mechanism. Build it with :meth:`jointdyn.multibody.model.Model.compile`.
+
+    Arrays (SI): ``minv`` (n,) inverse masses/inertias [1/kg, 1/(kg·m²)], ``q0_force`` (n,)
+    constant generalised forces (gravity) [N, N·m], constraint tables ``cint``/``creal``,
+    force-element tables ``fint``/``freal``, film ``tables`` (3-D), ``y0`` the assembled initial
+    state [q, q̇] and ``mem0`` the initial element memory.
+    """
+
+    name: str
+    body_names: tuple[str, ...]
+    constraint_names: tuple[str, ...]
+    constraint_rows: tuple[tuple[int, int], ...]
+    element_names: tuple[str, ...]
+    constraints: tuple
+    elements: tuple
+    minv: np.ndarray
+    q0_force: np.ndarray
+    cint: np.ndarray
+    creal: np.ndarray
+    fint: np.ndarray
+    freal: np.ndarray
+    tables: np.ndarray
+    n_rows: int
+    y0: np.ndarray
+    mem0: np.ndarray
+    gravity: tuple[float, float]
+    model_dict: dict = field(default_factory=dict, compare=False)
+
+    @property
+    def n(self) -> int:
+        """Number of coordinates (3 per moving body)."""
+        return self.minv.shape[0]
+
+    def packed(self, baumgarte: float = 0.0) -> Packed:
+        """The arrays handed to the compiled kernels, with a fresh workspace."""
+        from jointdyn.forces.elements import kinds_of
+        from jointdyn.multibody.dynamics import workspace_size
+
+        ws = np.zeros(workspace_size(self.n, self.n_rows, self.fint.shape[0]))
+        return Packed(
+            self.minv,
+            self.q0_force,
+            self.cint,
+            self.creal,
+            self.fint,
+            self.freal,
+            self.tables,
+            int(self.n_rows),
+            np.array([float(baumgarte)]),
+            ws,
+            kinds_of(self.fint),
+        )
+
+    def coordinate_labels(self) -> list[str]:
+        return [f"{b}.{c}" for b in self.body_names for c in ("x", "y", "phi")]
+
+    def body_index(self, name: str) -> int:
+        return self.body_names.index(name)
+
+    def rows_of(self, constraint: str) -> slice:
+        """Rows of λ belonging to a named constraint."""
+        try:
+            a, b = self.constraint_rows[self.constraint_names.index(constraint)]
+        except ValueError:
+            names = list(self.constraint_names)
+            raise KeyError(f"no constraint named {constraint!r}; have {names}") from None
+        return slice(a, b)

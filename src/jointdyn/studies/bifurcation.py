@@ -1,0 +1,247 @@
+"""Bifurcation diagrams of the shipped slider-crank over one builder parameter [T131].
+
+For each parameter value: one long run, the first ``transient_revs`` revolutions discarded,
+then the stroboscopic section (crank angle ``section_angle``) of the journal's relative state
+over ``record_revs`` revolutions [T122]. A periodic response with period p revolutions shows p
+points per parameter value, a quasi-periodic or chaotic one a cloud. A diagram file::
+
+    [base]                      # slider-crank builder/run arguments, as in a sweep file
+    joint = "dry"
+    rtol = 1e-8
+    [bifurcation]
+    parameter = "clearance"     # a numeric builder argument (jointdyn.studies.options.builder_args())
+    range = { start = 1e-4, stop = 5e-4, num = 120 }   # or: values = [...]
+    transient_revs = 100
+    record_revs = 60
+    section_angle = 0.0         # crank angle of the section [deg]
+    samples_per_rev = 72
+"""
+
+from __future__ import annotations
+
+import math
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from jointdyn.studies.poincare import VARIABLES, section_arrays  # noqa: F401  (re-exported)
+
+_KEYS = {"parameter", "values", "range", "transient_revs", "record_revs", "section_angle", "samples_per_rev"}
+
+
+@dataclass(frozen=True)
+class BifurcationSpec:
+    """What to run: ``base`` builder/run arguments, the swept ``parameter`` and its ``values``
+    (SI), revolutions, section angle [deg] and output samples per revolution."""
+
+    base: dict
+    parameter: str
+    values: tuple
+    transient_revs: int = 100
+    record_revs: int = 60
+    section_angle: float = 0.0
+    samples_per_rev: int = 72
+    scheduler: str | None = field(default=None, compare=False)
+
+    def __post_init__(self):
+        from jointdyn.studies.options import builder_args
+
+        valid = list(builder_args())
+        if self.parameter not in valid:
+            raise ValueError(
+                f"bifurcation.parameter = {self.parameter!r}: not a builder argument; valid: {valid}"
+            )
+        if len(self.values) < 1 or not all(math.isfinite(v) for v in self.values):
+            raise ValueError("bifurcation.values [SI]: need at least one finite value")
+        if self.transient_revs < 0 or self.record_revs < 1:
+            raise ValueError(
+                f"bifurcation.transient_revs/record_revs = {self.transient_revs}/{self.record_revs} [rev]: "
+                "need ≥ 0 and ≥ 1"
+            )
+        if self.samples_per_rev < 4:
+            raise ValueError(f"bifurcation.samples_per_rev = {self.samples_per_rev!r} [-]: must be ≥ 4")
+
+
+def load_bifurcation(path) -> BifurcationSpec:
+    """Read a diagram file (see the module docstring); unknown keys are errors."""
+    path = Path(path)
+    try:
+        doc = tomllib.loads(path.read_text())
+    except tomllib.TOMLDecodeError as err:
+        raise ValueError(f"{path}: {err}") from None
+    if set(doc) - {"base", "bifurcation", "dask"}:
+        raise ValueError(
+            f"{path}: unknown table(s) {sorted(set(doc) - {'base', 'bifurcation', 'dask'})}; "
+            "valid: ['base', 'bifurcation', 'dask']"
+        )
+    b = dict(doc.get("bifurcation", {}))
+    if set(b) - _KEYS:
+        raise ValueError(
+            f"{path}: [bifurcation] unknown key(s) {sorted(set(b) - _KEYS)}; valid: {sorted(_KEYS)}"
+        )
+    if "parameter" not in b:
+        raise ValueError(f"{path}: [bifurcation] needs `parameter`")
+    if ("values" in b) == ("range" in b):
+        raise ValueError(f"{path}: [bifurcation] needs exactly one of `values` or `range`")
+    if "range" in b:
+        r = b["range"]
+        if set(r) - {"start", "stop", "num"} or not {"start", "stop", "num"} <= set(r):
+            raise ValueError(f"{path}: [bifurcation] range needs start, stop, num")
+        values = tuple(float(v) for v in np.linspace(r["start"], r["stop"], int(r["num"])))
+    else:
+        values = tuple(float(v) for v in b["values"])
+    base = dict(doc.get("base", {}))
+    if base.get("model", "slider-crank") != "slider-crank":
+        raise ValueError(f"{path}: [base] model = {base.get('model')!r}; only 'slider-crank' is supported")
+    return BifurcationSpec(
+        base=base,
+        parameter=b["parameter"],
+        values=values,
+        transient_revs=int(b.get("transient_revs", 100)),
+        record_revs=int(b.get("record_revs", 60)),
+        section_angle=float(b.get("section_angle", 0.0)),
+        samples_per_rev=int(b.get("samples_per_rev", 72)),
+        scheduler=doc.get("dask", {}).get("scheduler"),
+    )
+
+
+def sweep_spec(spec: BifurcationSpec):
+    """The diagram as a sweep (:mod:`jointdyn.studies.sweep`): one case per parameter value, each
+    returning its section as the array output ``poincare`` [T136]."""
+    from jointdyn.studies.sweep_spec import SweepSpec
+
+    base = {
+        **spec.base,
+        "revs": spec.transient_revs + spec.record_revs,
+        "samples_per_rev": spec.samples_per_rev,
+    }
+    arrays = {
+        "poincare": {
+            "transient_revs": spec.transient_revs,
+            "record_revs": spec.record_revs,
+            "section_angle": spec.section_angle,
+        }
+    }
+    return SweepSpec(
+        base=base, grid={spec.parameter: list(spec.values)}, arrays=arrays, scheduler=spec.scheduler
+    )
+
+
+def run_bifurcation(
+    spec: BifurcationSpec,
+    out,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    progress=None,
+    resume: bool = False,
+):
+    """Run all parameter values through the sweep machinery (:func:`jointdyn.studies.sweep.run_sweep`:
+    local processes or a Dask cluster; per-case files in ``out/sweep``; ``resume`` runs only the
+    values not finished by an earlier call with the same spec) and write
+    ``out/bifurcation.nc``; returns the xarray Dataset (dims: the parameter, ``rev``)."""
+    import json
+
+    from jointdyn.studies.sweep import run_sweep
+
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    sp = sweep_spec(spec)
+    run_sweep(sp, out / "sweep", resume=resume, scheduler=scheduler, workers=workers, progress=progress)
+    results = []
+    for i in range(len(spec.values)):
+        r = json.loads((out / "sweep" / "cases" / f"case_{i:05d}.json").read_text(encoding="utf-8"))
+        a = {k.removeprefix("poincare_"): v for k, v in r.get("arrays", {}).items()}
+        results.append(a | {k: r[k] for k in ("error", "wall_time_s") if k in r})
+    ds = to_dataset(spec, results)
+    ds.to_netcdf(out / "bifurcation.nc", engine="h5netcdf")
+    return ds
+
+
+def to_dataset(spec: BifurcationSpec, results: list[dict]):
+    """Dataset with the section variables (parameter × rev), impacts per revolution, errors."""
+    import json
+
+    import xarray as xr
+
+    n, r = len(spec.values), spec.record_revs
+    data = {k: np.full((n, r), np.nan) for k in (*VARIABLES, "impacts_per_rev")}
+    for i, res in enumerate(results):
+        for k in data:
+            v = np.asarray(res.get(k, []), float)[:r]
+            data[k][i, : v.size] = v
+    p = spec.parameter
+    ds = xr.Dataset(
+        {k: ((p, "rev"), v) for k, v in data.items()}
+        | {
+            "error": (p, np.array([res.get("error", "") for res in results], dtype=str)),
+            "wall_time_s": (p, np.array([res.get("wall_time_s", np.nan) for res in results], float)),
+        },
+        coords={
+            p: np.asarray(spec.values, float),
+            "rev": np.arange(spec.transient_revs, spec.transient_revs + r),
+        },
+    )
+    ds.attrs.update(
+        {
+            "base": json.dumps(spec.base, default=str),
+            "section_angle_deg": spec.section_angle,
+            "transient_revs": spec.transient_revs,
+            "record_revs": spec.record_revs,
+            "samples_per_rev": spec.samples_per_rev,
+        }
+    )
+    return ds
+
+
+PARAM_UNITS = {
+    "speed": "rad/s",
+    "gravity": "m/s²",
+    "clearance": "m",
+    "viscosity": "Pa·s",
+    "length": "m",
+    "restitution": "-",
+    "asperity_height": "m",
+}
+
+
+def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> None:
+    """Section values against the parameter (one dot per recorded revolution), and the median
+    impacts per revolution."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    p = next(iter(ds[variable].dims))
+    x = ds[p].values
+    scale, unit = (
+        (1e3, "mm") if p in ("clearance", "length", "asperity_height") else (1.0, PARAM_UNITS.get(p, ""))
+    )
+    if p == "speed":
+        scale, unit = 60 / (2 * math.pi), "rpm"
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
+    v = ds[variable].values
+    xx = np.repeat(x[:, None], v.shape[1], axis=1)
+    a1.plot((xx * scale).ravel(), v.ravel(), ",", color="k", alpha=0.6)
+    a1.plot((xx * scale).ravel(), v.ravel(), ".", ms=1.2, color="k", alpha=0.4)
+    a1.set_ylabel(f"{variable} at crank angle {ds.attrs.get('section_angle_deg', 0):g}° [-]")
+    a1.set_title(title or f"bifurcation diagram over {p}")
+    imp = ds["impacts_per_rev"].values
+    if np.isfinite(imp).any():
+        a2.plot(x * scale, np.nanmedian(imp, axis=1), "-", lw=1, color="C3", label="median")
+        a2.fill_between(
+            x * scale,
+            np.nanquantile(imp, 0.05, axis=1),
+            np.nanquantile(imp, 0.95, axis=1),
+            color="C3",
+            alpha=0.2,
+            label="5–95 %",
+        )
+        a2.legend(fontsize=8)
+    a2.set_ylabel("impacts / rev [-]")
+    a2.set_xlabel(f"{p} [{unit}]")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)

@@ -1,0 +1,306 @@
+"""Parameter studies: many independent runs, on local processes or a Dask cluster.
+
+A sweep file (TOML)::
+
+    [base]                      # what is run for every case
+    model = "slider-crank"      # a shipped model …
+    joint = "alshaer2005"       # … with its builder arguments (clearance, viscosity, speed, …)
+    revs = 4                    # crank revolutions
+    [grid]                      # full factorial over these (builder or solver arguments)
+    clearance = [5e-5, 1e-4, 5e-4]
+    viscosity = [0.1, 0.4, 1.0]
+    [zip]                       # lists of equal length, varied together (optional)
+    [sample]                    # Latin-hypercube samples (optional): n, seed, ranges = {name = [lo, hi]}
+    [output]
+    keep_series = false         # also keep each case's time series (netCDF per case)
+    [output.poincare]           # optional array output: each case's stroboscopic section
+    transient_revs = 60         # (see case_arrays; gathered as (case, rev) variables)
+    record_revs = 40
+    section_angle = 0.0         # [deg]
+    [dask]
+    scheduler = "tcp://127.0.0.1:8786"   # optional; same as --scheduler
+
+Every case is checked before any work (:func:`validate`). A sweep directory is owned
+(:mod:`jointdyn.io.rundir`): ``spec.json`` records the spec that made it, ``--resume`` with another
+spec is refused, one writer at a time. Every case is written atomically to
+``DIR/cases/case_NNNNN.json`` (metrics, or the error of a failed case) as soon as it finishes;
+``--resume`` skips the cases already there. ``DIR/sweep.nc`` gathers all cases in one xarray
+Dataset (grid parameters as coordinates when the sweep is a pure grid), ``manifest.json`` last.
+"""
+
+from __future__ import annotations
+
+import json
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from jointdyn.core import atomic, interrupts
+from jointdyn.errors import Interrupted
+from jointdyn.studies import options
+from jointdyn.studies.sweep_spec import (
+    METRIC_UNITS,
+    METRICS,
+    SweepSpec,
+    latin_hypercube,
+    load_sweep,
+    validate,
+)
+
+__all__ = [
+    "METRICS",
+    "SweepSpec",
+    "latin_hypercube",
+    "load_sweep",
+    "validate",
+    "run_case",
+    "run_sweep",
+    "gather",
+]
+
+
+def _metrics_of(summ: dict, element: str | None) -> dict:
+    """The sweep's ``METRICS`` of one case: the run's summary, completed by the metrics of the
+    element under study (see :func:`jointdyn.studies.outputs.element_summary`)."""
+    es = summ.get("elements", {}).get(element, {}) if element is not None else {}
+    return {k: summ[k] if k in summ else es[k] for k in METRICS if k in summ or k in es}
+
+
+def case_arrays(res, arrays: dict) -> dict[str, list[float]]:
+    """Array outputs of one run (``[output.NAME]`` of the sweep file, ``ARRAY_OUTPUTS``):
+    ``poincare`` = the stroboscopic section of the first journal element [T122, T136]."""
+    out = {}
+    if "poincare" in arrays:
+        from jointdyn.studies.poincare import section_arrays
+
+        a = arrays["poincare"]
+        sec = section_arrays(res, int(a["transient_revs"]), int(a["record_revs"]), float(a["section_angle"]))
+        out |= {f"poincare_{k}": v for k, v in sec.items()}
+    return out
+
+
+def run_case(base: dict, params: dict, series_path: str | None = None, arrays: dict | None = None) -> dict:
+    """Run one case (in a worker process) through :func:`jointdyn.studies.runs.run`; returns its
+    metrics, plus ``"arrays"`` (:func:`case_arrays`) when ``arrays`` asks for them. Never
+    raises: a failure is returned as ``{"error": message}``."""
+    from jointdyn.models import slider_crank as sc
+    from jointdyn.studies import runs
+
+    t0 = time.perf_counter()
+    try:
+        merged = {**base, **params}
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # reported once at validation, not per case
+            if "file" in merged:
+                from jointdyn.io.modelfile import load_system
+
+                extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
+                overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
+                _, system, cfg = load_system(merged["file"], overrides)
+                res, _, summ = runs.run(system, cfg)
+                names = res.system.element_names
+                element = names[0] if names else None
+            else:
+                from jointdyn.studies.options import joints
+                from jointdyn.studies.sweep_spec import slider_crank_call
+
+                # validate() refused arguments that act on no joint of the sweep; the rest that
+                # do not act on this case's joint are dropped here
+                joint, model_kw, run_kw, revs = slider_crank_call(merged, set(joints()))
+                res, _, summ = runs.run_slider_crank(joint, revs, model_kw=model_kw, **run_kw)
+                element = sc.PIN if sc.PIN in res.system.element_names else None
+        metrics = _metrics_of(summ, element)
+        extra = {"arrays": case_arrays(res, arrays)} if arrays else {}
+        metrics["wall_time_s"] = time.perf_counter() - t0
+        if series_path:
+            with atomic.replacing(Path(series_path)) as tmp:
+                res.save(tmp)
+        return {
+            k: (float(v) if isinstance(v, (int, float, np.floating, np.integer)) else v)
+            for k, v in metrics.items()
+        } | extra
+    except Exception as err:  # recorded, the sweep goes on
+        return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
+
+
+def _connect(scheduler: str, timeout: float = 8.0):
+    """A Dask client, or one ValueError line within ``timeout`` [s]."""
+    try:
+        from distributed import Client
+    except ImportError:
+        raise ValueError("--scheduler needs Dask: pip install 'jointdyn[dist]'") from None
+    try:
+        return Client(scheduler, timeout=f"{timeout}s")
+    except (OSError, TimeoutError, ValueError) as err:
+        first = str(err).splitlines()[0] if str(err) else type(err).__name__
+        raise ValueError(f"--scheduler {scheduler}: cannot connect within {timeout:g} s ({first})") from None
+
+
+def _spec_record(spec: SweepSpec, n: int) -> dict:
+    rec = {"base": spec.base, "grid": spec.grid, "zip": spec.zipped, "sample": spec.sample}
+    rec |= {"keep_series": spec.keep_series, "n_cases": n} | ({"arrays": spec.arrays} if spec.arrays else {})
+    if "file" in spec.base:  # the model file is part of the spec: an edited file is another sweep
+        rec["file_sha256"] = atomic.sha256(spec.base["file"])
+    return json.loads(json.dumps(rec, default=str))
+
+
+def _check_owner(out: Path, rec: dict, resume: bool) -> None:
+    """A resumed sweep must be the one that made the directory."""
+    if not resume:
+        return
+    cdir = out / "cases"
+    try:
+        old = json.loads((out / "spec.json").read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        if cdir.exists() and any(cdir.iterdir()):
+            raise ValueError(
+                f"--resume {out}: has case files but no spec.json; not a sweep directory"
+            ) from None
+        return
+    except ValueError:
+        raise ValueError(
+            f"--resume {out}: spec.json is unreadable; use --overwrite or another --out"
+        ) from None
+    if old != rec:
+        diff = sorted(k for k in set(old) | set(rec) if old.get(k) != rec.get(k))
+        raise ValueError(
+            f"--resume {out}: the directory was made by a different sweep spec (differs in "
+            f"{', '.join(diff)}); resume with the same file, or use --overwrite or another --out"
+        )
+
+
+def run_sweep(
+    spec: SweepSpec,
+    out,
+    resume: bool = False,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    progress=None,
+    overwrite: bool = True,
+):
+    """Run all cases not yet done; write per-case files, ``sweep.nc`` and the manifest.
+    Returns the Dataset. ``overwrite`` (the library default; the CLI asks for ``--overwrite``)
+    lets a non-empty sweep directory be replaced when not resuming."""
+    from jointdyn.io.rundir import OutputDir, check_path
+
+    out = check_path(out)
+    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+        raise ValueError(f"--workers = {workers!r} [-]: must be an integer >= 1")
+    cases, invalid = validate(spec)
+    rec = _spec_record(spec, len(cases))
+    scheduler = scheduler or spec.scheduler
+    client = _connect(scheduler) if scheduler else None  # before any file is touched
+    try:
+        od = OutputDir(out, "sweep", rec).claim(overwrite=overwrite, resume=resume)
+        try:
+            _check_owner(out, rec, resume)
+        except BaseException:
+            od.release()
+            raise
+        return _run(spec, od, cases, invalid, rec, client, workers, progress)
+    finally:
+        if client is not None:
+            client.close()
+
+
+def _run(spec, od, cases, invalid, rec, client, workers, progress):
+    out = od.path
+    cdir = out / "cases"
+    cdir.mkdir(exist_ok=True)
+    atomic.write_json(out / "spec.json", rec)
+    todo = [i for i in range(len(cases)) if not (cdir / f"case_{i:05d}.json").exists()]
+    sp = (lambda i: str(cdir / f"case_{i:05d}.nc")) if spec.keep_series else (lambda i: None)
+    done = len(cases) - len(todo)
+
+    def record(i, result):
+        nonlocal done
+        atomic.write_json(cdir / f"case_{i:05d}.json", {"case": i, "params": cases[i], **result})
+        done += 1
+        if progress:
+            progress(done, len(cases))
+
+    for i in [i for i in todo if i in invalid]:  # checked before any work: not run
+        record(i, {"error": invalid[i], "wall_time_s": 0.0})
+    todo = [i for i in todo if i not in invalid]
+    try:
+        with interrupts.catching():
+            if todo and client is not None:
+                from distributed import as_completed
+
+                futs = {
+                    client.submit(run_case, spec.base, cases[i], sp(i), spec.arrays, pure=False): i
+                    for i in todo
+                }
+                for fut in as_completed(futs):
+                    record(futs[fut], fut.result())
+                    interrupts.check()
+            elif todo:
+                _local(spec, cases, todo, sp, workers, record)
+            ds = gather(out, spec, cases)
+        with od.write("sweep.nc") as tmp:
+            ds.to_netcdf(tmp, engine="h5netcdf")
+    except Interrupted as err:
+        od.finish("interrupted", f"{err}; {done} of {len(cases)} cases finished (continue with --resume)")
+        raise
+    except BaseException as err:
+        od.finish("failed", f"{type(err).__name__}: {err}")
+        raise
+    for f in sorted(cdir.iterdir()):
+        od.record(f"cases/{f.name}")
+    failed = int((ds["error"] != "").sum())
+    od.finish("complete", f"{failed} of {len(cases)} cases failed" if failed else "", n_cases=len(cases))
+    return ds
+
+
+def _local(spec, cases, todo, sp, workers, record) -> None:
+    from jointdyn.io.pool import run_local
+
+    calls = ((i, (spec.base, cases[i], sp(i), spec.arrays)) for i in todo)
+    run_local(run_case, calls, workers, record)
+
+
+def gather(out: Path, spec: SweepSpec, cases: list[dict]):
+    """Combine the per-case files into one Dataset (dims = grid parameters for pure grids;
+    string parameters such as ``joint`` stay strings)."""
+    import xarray as xr
+
+    rows = [json.loads((out / "cases" / f"case_{i:05d}.json").read_text()) for i in range(len(cases))]
+    data = {
+        m: np.array([r.get(m, np.nan) if not isinstance(r.get(m), str) else np.nan for r in rows], float)
+        for m in METRICS
+    }
+    errors = np.array([r.get("error", "") for r in rows], dtype=object)
+    ds = xr.Dataset(
+        {m: ("case", v) for m, v in data.items()} | {"error": ("case", errors.astype(str))},
+        coords={"case": np.arange(len(cases))},
+    )
+    for name, a in spec.arrays.items():  # (case, rev) variables, NaN where a case failed
+        keys = sorted({k for r in rows for k in r.get("arrays", {}) if k.startswith(f"{name}_")})
+        for k in keys:
+            v = np.full((len(rows), int(a["record_revs"])), np.nan)
+            for i, r in enumerate(rows):
+                x = np.asarray(r.get("arrays", {}).get(k, []), float)[: v.shape[1]]
+                v[i, : x.size] = x
+            ds[k] = (("case", "rev"), v)
+            ds[k].attrs["units"] = "1/rev" if k.endswith("impacts_per_rev") else "-"  # e/c, ė/(cω)
+        ds.coords["rev"] = np.arange(
+            int(a["transient_revs"]), int(a["transient_revs"]) + int(a["record_revs"])
+        )
+    for name in sorted({k for c in cases for k in c}):
+        vals = [c.get(name, np.nan) for c in cases]
+        numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in vals)
+        ds.coords[name] = (
+            "case",
+            np.array(vals, dtype=float) if numeric else np.array([str(v) for v in vals]),
+        )
+    if spec.grid and not spec.zipped and not spec.sample:
+        keys = list(spec.grid)
+        ds = ds.swap_dims(case=keys[0]) if len(keys) == 1 else ds.set_index(case=keys).unstack("case")
+    units = {k: u for k, (_, u) in options.builder_args().items()} | METRIC_UNITS
+    for name in ds.variables:
+        if name in units:
+            ds[name].attrs["units"] = units[name]
+    ds.attrs["base"] = json.dumps(spec.base, default=str)
+    return ds

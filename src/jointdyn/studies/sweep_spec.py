@@ -1,0 +1,242 @@
+"""Sweep files: reading, the case list and the checks made before any case runs.
+
+Structural problems (unknown tables or keys, a parameter that is not an argument, an empty
+grid, mismatched ``[zip]`` lengths, a parameter with no effect on any joint of the sweep) refuse
+the whole sweep with one line. A case whose *values* are out of range is not run: it is
+recorded as a failed case with its message, and the sweep goes on with the others.
+"""
+
+from __future__ import annotations
+
+import itertools
+import warnings
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from jointdyn.core.checks import check
+from jointdyn.io.modelfile.locate import read_toml
+from jointdyn.studies import options
+
+#: the per-case metrics of a sweep and their units (``sweep.nc`` variable attribute ``units``)
+METRIC_UNITS = {
+    "peak_moment": "N·m",
+    "min_moment": "N·m",
+    "rms_moment": "N·m",
+    "max_xi": "-",
+    "min_h_min": "m",
+    "impacts": "-",
+    "energy_dissipated": "J",
+    "wall_time_s": "s",
+    "rhs_evaluations": "-",
+}
+METRICS = tuple(METRIC_UNITS)
+TABLES = ("base", "grid", "zip", "sample", "output", "dask")
+#: array outputs a case can return besides its scalar metrics ([output.NAME] tables): name ->
+#: their keys and defaults (see :func:`jointdyn.studies.sweep.case_arrays`)
+ARRAY_OUTPUTS = {"poincare": {"transient_revs": 0, "record_revs": 1, "section_angle": 0.0}}
+
+
+def model_args() -> tuple[str, ...]:
+    """Sweepable builder arguments of the slider-crank (from its signature) plus ``joint``."""
+    return ("joint", *options.builder_args(), "friction", "contact")
+
+
+def run_args() -> tuple[str, ...]:
+    """Sweepable integration settings (from ``slider_crank_config``'s signature)."""
+    return tuple(options.run_args())
+
+
+@dataclass(frozen=True)
+class SweepSpec:
+    """A parameter study (see :mod:`jointdyn.studies.sweep` for the file layout)."""
+
+    base: dict
+    grid: dict = field(default_factory=dict)
+    zipped: dict = field(default_factory=dict)
+    sample: dict = field(default_factory=dict)
+    keep_series: bool = False
+    scheduler: str | None = None
+    arrays: dict = field(default_factory=dict)
+    """array outputs per case: {name in ``ARRAY_OUTPUTS``: {key: value}}"""
+
+    def cases(self) -> list[dict]:
+        """The list of parameter dicts, one per case, in a fixed order."""
+        parts = []
+        if self.grid:
+            keys = list(self.grid)
+            parts.append([dict(zip(keys, vals)) for vals in itertools.product(*self.grid.values())])
+        if self.zipped:
+            lens = {len(v) for v in self.zipped.values()}
+            if len(lens) != 1:
+                raise ValueError(f"[zip]: all lists must have the same length; got {sorted(lens)}")
+            keys = list(self.zipped)
+            parts.append([dict(zip(keys, vals)) for vals in zip(*self.zipped.values())])
+        if self.sample:
+            parts.append(latin_hypercube(self.sample))
+        cases = [{}]
+        for p in parts:
+            cases = [{**a, **b} for a in cases for b in p]
+        return cases
+
+
+def latin_hypercube(sample: dict) -> list[dict]:
+    """``sample = {n, seed, ranges = {name: [lo, hi]}}`` -> n cases (scipy.stats.qmc)."""
+    from scipy.stats import qmc
+
+    unknown = set(sample) - {"n", "seed", "ranges"}
+    if unknown:
+        raise ValueError(f"[sample]: unknown key(s) {sorted(unknown)}; valid: ['n', 'ranges', 'seed']")
+    if "n" not in sample or "ranges" not in sample:
+        raise ValueError("[sample]: needs n (number of samples) and ranges = {name = [lo, hi]}")
+    check("[sample].n", sample["n"], "-", ">= 1", integer=True)
+    ranges = sample["ranges"]
+    if not isinstance(ranges, dict) or not ranges:
+        raise ValueError("[sample].ranges: must be a non-empty table name = [lo, hi]")
+    for k, r in ranges.items():
+        if not (isinstance(r, list) and len(r) == 2):
+            raise ValueError(f"[sample].ranges.{k}: must be [lo, hi]; got {r!r}")
+        check(f"[sample].ranges.{k}[0]", r[0], "SI", "finite")
+        check(f"[sample].ranges.{k}[1]", r[1], "SI", f"> {r[0]}")
+    names = list(ranges)
+    lo = np.array([ranges[k][0] for k in names], float)
+    hi = np.array([ranges[k][1] for k in names], float)
+    u = qmc.LatinHypercube(d=len(names), seed=sample.get("seed", 0)).random(int(sample["n"]))
+    x = qmc.scale(u, lo, hi)
+    return [{k: float(v) for k, v in zip(names, row)} for row in x]
+
+
+def load_sweep(path) -> SweepSpec:
+    """Read a sweep file; unknown tables/keys are errors naming the valid ones."""
+    path = Path(path)
+    doc, _ = read_toml(path, "sweep file")
+    if set(doc) - set(TABLES):
+        raise ValueError(
+            f"{path}: unknown table(s) {sorted(set(doc) - set(TABLES))}; valid: {sorted(TABLES)}"
+        )
+    if "base" not in doc:
+        raise ValueError(f"{path}: missing [base] table")
+    for t in TABLES:
+        if t in doc and not isinstance(doc[t], dict):
+            raise ValueError(f"{path}: {t} must be a table [{t}]")
+    out = doc.get("output", {})
+    valid_out = {"keep_series", *ARRAY_OUTPUTS}
+    if set(out) - valid_out:
+        raise ValueError(
+            f"{path}: [output] unknown key(s) {sorted(set(out) - valid_out)}; valid: {sorted(valid_out)}"
+        )
+    arrays = {}
+    for name in set(out) & set(ARRAY_OUTPUTS):
+        t, keys = out[name], ARRAY_OUTPUTS[name]
+        if not isinstance(t, dict) or set(t) - set(keys):
+            raise ValueError(f"{path}: [output.{name}] takes only {sorted(keys)}")
+        arrays[name] = {**keys, **t}
+    if not isinstance(out.get("keep_series", False), bool):
+        raise ValueError(f"{path}: [output].keep_series must be true or false")
+    dask = doc.get("dask", {})
+    if set(dask) - {"scheduler"} or not isinstance(dask.get("scheduler", ""), str):
+        raise ValueError(f'{path}: [dask] takes only scheduler = "tcp://HOST:PORT"')
+    base = dict(doc["base"])
+    if "file" in base:
+        f = (path.parent / str(base["file"])).resolve()
+        if not f.is_file():
+            raise ValueError(f"{path}: [base].file = {base['file']!r}: no such model file ({f})")
+        base["file"] = str(f)
+    for t in ("grid", "zip"):
+        for k, v in doc.get(t, {}).items():
+            if not isinstance(v, list):
+                raise ValueError(f"{path}: [{t}].{k} must be a list of values; got {v!r}")
+            if not v:
+                raise ValueError(f"{path}: [{t}].{k} is empty: the sweep would have no cases")
+    spec = SweepSpec(
+        base=base,
+        grid=doc.get("grid", {}),
+        zipped=doc.get("zip", {}),
+        sample=doc.get("sample", {}),
+        keep_series=out.get("keep_series", False),
+        scheduler=dask.get("scheduler"),
+        arrays=arrays,
+    )
+    for name in base:
+        _check_param(base, name, "[base]")
+    for name in itertools.chain(spec.grid, spec.zipped, spec.sample.get("ranges", {})):
+        _check_param(base, name, "sweep parameter")
+    return spec
+
+
+def _check_param(base: dict, name: str, where: str = "sweep parameter"):
+    if "file" in base:
+        return  # dotted model-file paths are checked by the model-file loader
+    valid = tuple(dict.fromkeys(("model", *model_args(), *run_args())))
+    if name not in valid:
+        raise ValueError(f"{where} {name!r} is not a slider-crank argument; valid: {list(valid)}")
+
+
+def slider_crank_call(merged: dict, joints_in_sweep: set | None = None):
+    """``(joint, model_kw, run_kw, revs)`` for one slider-crank case, checked. Arguments with
+    no effect on this case's joint are dropped when they act on another joint of the sweep
+    (``joints_in_sweep``), otherwise they are an error."""
+    model = merged.get("model", "slider-crank")
+    if model != "slider-crank":
+        raise ValueError(f"model = {model!r}: unknown shipped model; valid: ['slider-crank']")
+    joint = merged.get("joint", "perfect")
+    if not isinstance(joint, str) or joint not in options.joints():
+        raise ValueError(f"joint = {joint!r}: unknown; valid: {', '.join(options.joints())}")
+    given = {k: merged[k] for k in model_args() if k in merged and k != "joint"}
+    if joints_in_sweep:
+        for k in list(given):
+            if k not in options.relevant(joint) and any(k in options.relevant(j) for j in joints_in_sweep):
+                del given[k]
+    model_kw = options.slider_crank_args(joint, given)
+    ra = options.run_args()
+    run_kw = {k: merged[k] for k in ra if k in merged and k != "revs"}
+    revs = merged.get("revs", ra["revs"])
+    options.check_run(
+        revs, run_kw.get("samples_per_rev", ra["samples_per_rev"]), run_kw.get("rtol"), run_kw.get("atol")
+    )
+    if "solver" in run_kw:
+        from jointdyn.integrators import SOLVERS
+
+        if run_kw["solver"] not in ("auto", *SOLVERS):
+            raise ValueError(f"solver = {run_kw['solver']!r}: unknown; valid: {['auto', *SOLVERS]}")
+    return joint, model_kw, run_kw, float(revs)
+
+
+def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
+    """Check every case before any runs: returns (cases, {index: error} of invalid cases).
+    Structural problems raise ``ValueError``; physics warnings are raised once per message."""
+    cases = spec.cases()
+    if not cases:
+        raise ValueError("the sweep has no cases (an empty list or sample n = 0)")
+    invalid: dict[int, str] = {}
+    seen: set[str] = set()
+    joints = {c.get("joint", spec.base.get("joint", "perfect")) for c in cases}
+    joints = {j for j in joints if isinstance(j, str)}
+    if "file" not in spec.base:
+        for k in {*spec.base, *(k for c in cases for k in c)} & set(model_args()) - {"joint"}:
+            if not any(k in options.relevant(j) for j in joints & set(options.joints())):
+                raise ValueError(f"{k!r}: no effect on any joint of this sweep ({', '.join(sorted(joints))})")
+    for i, params in enumerate(cases):
+        merged = {**spec.base, **params}
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            try:
+                if "file" in merged:
+                    from jointdyn.io.modelfile import load_model
+
+                    extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
+                    import json
+
+                    # values and names checked here; assembly once, in the case's run
+                    overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
+                    load_model(merged["file"], overrides, assemble=False)
+                else:
+                    slider_crank_call(merged, joints)
+            except ValueError as err:
+                invalid[i] = f"{type(err).__name__}: {err}"
+        for w in caught:
+            if str(w.message) not in seen:
+                seen.add(str(w.message))
+                warnings.warn(f"case {i}: {w.message}", w.category, stacklevel=2)
+    return cases, invalid

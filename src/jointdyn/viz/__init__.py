@@ -1,0 +1,1 @@
+"""Figures: static plots, interactive pages, animations and the reproduction's figure set."""
