@@ -8,62 +8,16 @@ The front door::
     res.save("run.nc")
     res = load("run.nc")  # Results again: res.element(...), jointdyn.post.* work on it
 
-Note: ``jointdyn.simulate`` is the function; the module is ``sys.modules["jointdyn.simulate"]``
-(``from jointdyn.simulation.simulate import SimConfig`` keeps working).
+Note: ``jointdyn.simulate`` is the function; its module is :mod:`jointdyn.simulation.simulate`.
+Importing jointdyn changes no global state (numba's settings apply to jointdyn's own kernels
+only, :mod:`jointdyn.core.compiled`).
 """
 
 from __future__ import annotations
 
-_NUMBA_OPT = 1
-"""LLVM optimisation level of the compiled kernels unless ``NUMBA_OPT`` is set (numba's default
-is 3). Measured [T171]: level 1 compiles the first run ≈ 10–20 % faster and runs the kernels
-faster (small loops over a few coordinates gain nothing from -O3's unrolling and
-vectorisation); IEEE semantics are kept at every level, so trajectories are bit-identical."""
+from jointdyn.core import compiled as _compiled
 
-
-def _numba_opt() -> None:
-    import os
-
-    if "NUMBA_OPT" in os.environ:
-        return
-    import numba
-    from numba.core.config import _OptLevel
-
-    numba.config.OPT = _OptLevel(_NUMBA_OPT)
-
-
-def _numba_cache_dir() -> None:
-    """Key numba's on-disk cache to a hash of this package's sources.
-
-    numba invalidates a cached function only when *its own* file changes, not when a compiled
-    function it calls (in another module) does; a stale cache then silently runs old code. A
-    cache directory per source hash makes every edit or upgrade start clean. An explicit
-    ``NUMBA_CACHE_DIR`` is respected (e.g. the cold-start benchmark)."""
-    import hashlib
-    import os
-    from pathlib import Path
-
-    _numba_opt()
-    if os.environ.get("NUMBA_CACHE_DIR"):
-        return
-    h = hashlib.sha1()
-    h.update(os.environ.get("NUMBA_OPT", "jointdyn").encode())  # code of another opt level
-    root = Path(__file__).parent
-    for f in sorted(root.rglob("*.py")):
-        h.update(f.relative_to(root).as_posix().encode())
-        h.update(f.read_bytes())
-    base = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "jointdyn"
-    try:
-        target = base / f"numba-{h.hexdigest()[:16]}"
-        target.mkdir(parents=True, exist_ok=True)
-    except OSError:  # read-only home: fall back to numba's default (__pycache__)
-        return
-    import numba
-
-    numba.config.CACHE_DIR = str(target)
-
-
-_numba_cache_dir()
+_compiled.install()  # numba settings for jointdyn's own kernels only, before any is defined [T225]
 
 from importlib.metadata import PackageNotFoundError as _PNF  # noqa: E402
 from importlib.metadata import version as _v  # noqa: E402
