@@ -66,7 +66,9 @@ def _results_file(directory: Path) -> Path:
 @app.command("plot")
 def plot_cmd(
     directory: Path = typer.Argument(..., help="a run directory with results.nc (or the file)"),
-    what: str = typer.Option("moment", help="what to draw: " + ", ".join(PLOTS)),
+    what: str = typer.Option(
+        "moment", help="what to draw: " + ", ".join(PLOTS) + ", pressure (with --at ANGLE)"
+    ),
     out: Path = typer.Option(
         None, help="PNG file (default DIR/plot_<what>.png; never the run's own figures)"
     ),
