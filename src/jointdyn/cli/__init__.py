@@ -10,15 +10,14 @@ fixes the order of ``jointdyn --help``.
 
 from __future__ import annotations
 
-from jointdyn.cli import (
-    bearing,  # noqa: F401  bearing-table
-    chaos,  # noqa: F401  ensemble, poincare, bifurcation, lyapunov, spectrum
-    files,  # noqa: F401  plot, plot-sweep, animate, film-force, list
-    main,  # noqa: F401  run, reproduce, sweep
-)
-
-# isort: off  (registration order is the order of ``jointdyn --help``)
+# the registration order is the order of ``jointdyn --help``
+# isort: off
 from jointdyn.cli.common import _progress, app
+from jointdyn.cli import main  # noqa: F401  run, reproduce, sweep
+from jointdyn.cli import files  # noqa: F401  plot, plot-sweep, animate, film-force, list
+from jointdyn.cli import bearing  # noqa: F401  bearing-table
+from jointdyn.cli import chaos  # noqa: F401  poincare, bifurcation, lyapunov, spectrum, ensemble
+from jointdyn.cli import cache  # noqa: F401  cache info, cache clear
 
 # isort: on
 

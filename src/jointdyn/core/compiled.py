@@ -37,10 +37,47 @@ def _source_hash() -> str:
     return h.hexdigest()[:16]
 
 
+def cache_base() -> Path:
+    """jointdyn's cache directory, ``$XDG_CACHE_HOME/jointdyn`` or ``~/.cache/jointdyn``."""
+    return Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "jointdyn"
+
+
 def cache_root() -> Path:
-    """The directory of jointdyn's compiled-kernel cache for these sources [-]."""
-    base = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "jointdyn"
-    return base / f"numba-{_source_hash()}"
+    """The directory of jointdyn's compiled-kernel cache for these sources (content-keyed)."""
+    return cache_base() / f"numba-{_source_hash()}"
+
+
+def cache_entries() -> list[dict]:
+    """What jointdyn keeps in :func:`cache_base`: one entry per directory with its ``kind``
+    ("kernels" for these sources, "stale kernels" of other sources, "film tables"), ``path``,
+    ``files`` and ``bytes`` [B]."""
+    base, current = cache_base(), cache_root().name
+    out = []
+    for d in sorted(base.iterdir()) if base.is_dir() else ():
+        if not d.is_dir() or d.is_symlink():
+            continue
+        if d.name.startswith("numba-"):
+            kind = "kernels" if d.name == current else "stale kernels"
+        elif d.name == "finite_tables":
+            kind = "film tables"
+        else:
+            continue
+        files = [f for f in d.rglob("*") if f.is_file() and not f.is_symlink()]
+        out.append(
+            {"kind": kind, "path": d, "files": len(files), "bytes": sum(f.stat().st_size for f in files)}
+        )
+    return out
+
+
+def clear_cache(stale_only: bool = False) -> list[dict]:
+    """Delete jointdyn's cache directories (only the stale kernels with ``stale_only``); returns
+    the entries removed. Nothing else under the cache directory is touched."""
+    import shutil
+
+    gone = [e for e in cache_entries() if not stale_only or e["kind"] == "stale kernels"]
+    for e in gone:
+        shutil.rmtree(e["path"])
+    return gone
 
 
 _ROOT: str | None = None
@@ -56,6 +93,11 @@ class _JointdynCacheLocator(caching._SourceFileBackedLocatorMixin, caching._Cach
 
     def get_cache_path(self):
         return self._cache_path
+
+    def get_source_stamp(self):
+        """The sources' content hash, not the file's mtime: the directory is already keyed to the
+        content, so a reinstall of unchanged sources (new mtimes) keeps its compiled kernels."""
+        return _ROOT
 
     @classmethod
     def from_function(cls, py_func, py_file):

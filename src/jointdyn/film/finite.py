@@ -168,12 +168,13 @@ def build_table(
     ~/.cache/jointdyn/finite_tables, keyed by all arguments and a hash of the builder's sources."""
     if not (math.isfinite(L_over_D) and L_over_D > 0):
         raise ValueError(f"L_over_D = {L_over_D!r} [-]: must be > 0")
+    from jointdyn.core.compiled import cache_base
     from jointdyn.film.cavitation import check_cavitation
 
     check_cavitation(cavitation)
     args = (2, L_over_D, n_xi, n_psi, n_theta, n_zeta, XI_MAX, cavitation, _builder_hash(cavitation))
     key = hashlib.sha1(repr(args).encode()).hexdigest()[:16]
-    base = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "jointdyn" / "finite_tables"
+    base = cache_base() / "finite_tables"
     f = base / f"{key}.npy"
     if cache and f.exists():
         return np.load(f)

@@ -1,0 +1,49 @@
+"""``jointdyn cache info`` and ``jointdyn cache clear``: what jointdyn keeps in its cache
+directory (compiled kernels per source hash, finite-film tables) and emptying it [T225]."""
+
+from __future__ import annotations
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from jointdyn.cli.common import _one_line_errors, app, console
+
+cache_app = typer.Typer(
+    help="Show or empty jointdyn's cache (compiled kernels, film tables).", no_args_is_help=True
+)
+app.add_typer(cache_app, name="cache")
+
+
+def _mb(n: int) -> str:
+    return f"{n / 1e6:.1f} MB"
+
+
+@cache_app.command("info")
+def info() -> None:
+    """List the cache: compiled kernels of these sources, stale kernels of other versions, tables."""
+    from jointdyn.core.compiled import cache_base, cache_entries, cache_root
+
+    with _one_line_errors():
+        entries = cache_entries()
+        tab = Table(title=f"jointdyn cache: {escape(str(cache_base()))}")
+        for col in ("kind", "directory", "files", "size"):
+            tab.add_column(col, justify="right" if col in ("files", "size") else "left")
+        for e in entries:
+            tab.add_row(e["kind"], escape(e["path"].name), str(e["files"]), _mb(e["bytes"]))
+        console.print(tab)
+        total = sum(e["bytes"] for e in entries)
+        console.print(f"total {_mb(total)}; these sources compile into {escape(cache_root().name)}")
+
+
+@cache_app.command("clear")
+def clear(
+    stale: bool = typer.Option(False, "--stale", help="remove only kernels compiled from other sources"),
+) -> None:
+    """Delete jointdyn's cache directories (the next run compiles its kernels again)."""
+    from jointdyn.core.compiled import clear_cache
+
+    with _one_line_errors():
+        gone = clear_cache(stale_only=stale)
+        freed = sum(e["bytes"] for e in gone)
+        console.print(f"removed {len(gone)} cache directories ({_mb(freed)})")
