@@ -7,7 +7,7 @@ import typer
 from rich.markup import escape
 from rich.table import Table
 
-from jointdyn.cli.common import _one_line_errors, app, console
+from jointdyn.cli.common import _one_line_errors, _progress, app, console
 
 cache_app = typer.Typer(
     help="Show or empty jointdyn's cache (compiled kernels, film tables).", no_args_is_help=True
@@ -47,3 +47,31 @@ def clear(
         gone = clear_cache(stale_only=stale)
         freed = sum(e["bytes"] for e in gone)
         console.print(f"removed {len(gone)} cache directories ({_mb(freed)})")
+
+
+@app.command()
+def warmup(
+    targets: list[str] = typer.Argument(
+        None,
+        help="shipped joints (perfect, dry, ott, alshaer2005, finite, short) or model files; default: all",
+    ),
+    processes: int = typer.Option(0, help="worker processes (0: all cores)", min=0),
+) -> None:
+    """Compile the kernels of the given models into the cache, in parallel processes (one short
+    run each), so that their first real run loads instead of compiling."""
+    from jointdyn.studies.warmup import SHIPPED
+    from jointdyn.studies.warmup import warmup as run_warmup
+
+    with _one_line_errors():
+        names = list(targets or SHIPPED)
+        with _progress("warm-up") as prog:
+            task = prog.add_task("compiling kernels (once per version of jointdyn)", total=len(names))
+            finished: list[dict] = []
+
+            def record(r):
+                finished.append(r)
+                prog.update(task, completed=len(finished))
+
+            results = run_warmup(names, processes or None, record)
+        for r in sorted(results, key=lambda r: names.index(r["target"])):
+            console.print(f"{escape(r['target'])}: {r['compilations']} compilations, {r['seconds']:.1f} s")
