@@ -122,6 +122,8 @@ def test_plot_and_animate_a_saved_run(tmp_path):
     from PIL import Image
 
     assert Image.open(gif).n_frames == 8
+    r = runner.invoke(app, ["animate", str(out), "--out", str(gif), "--frames", "100000000"])
+    assert r.exit_code == 2 and "--frames" in r.output and "5000" in r.output  # refused before work
 
 
 def test_saved_file_reads_back_as_the_in_memory_dataset(tmp_path):

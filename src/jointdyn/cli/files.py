@@ -191,14 +191,16 @@ def plot_sweep(
 def animate_cmd(
     directory: Path = typer.Argument(..., help="a run directory with results.nc (or the file)"),
     out: Path = typer.Option(Path("anim.gif"), help="anim.gif (pillow) or anim.mp4 (needs ffmpeg)"),
-    frames: int = typer.Option(120, help="number of frames [-] (>= 2)"),
+    frames: int = typer.Option(120, help="number of frames [-] (2 … 5000)"),
 ):
-    """Animate a saved run: the mechanism moving, journal orbits (e/c) in insets."""
-    from jointdyn.viz.animate import animate
+    """Animate a saved run: the mechanism moving, journal orbits (e/c) in insets. Cost: the
+    static figure is drawn once and each frame redraws only the moving parts (≈ 0.05 s CPU per
+    frame; 120 frames of a 4-revolution run ≈ 7 s CPU with loading)."""
+    from jointdyn.viz.animate import MAX_FRAMES, animate
 
     with _one_line_errors():
-        if frames < 2:
-            raise ValueError(f"--frames = {frames} [-]: must be >= 2")
+        if not 2 <= frames <= MAX_FRAMES:
+            raise ValueError(f"--frames = {frames} [-]: must be 2 … {MAX_FRAMES}")
         if out.suffix.lower() not in (".gif", ".mp4"):
             raise ValueError(f"--out {out}: must end in .gif or .mp4")
         f = _results_file(directory)

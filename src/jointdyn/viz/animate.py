@@ -10,6 +10,9 @@ and the driving moment against crank angle with the current value marked.
 
 from __future__ import annotations
 
+import contextlib
+import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -29,24 +32,29 @@ def _world(q, bodies, b, i, loc):
     return x + c * loc[:, 0] - s * loc[:, 1], y + s * loc[:, 0] + c * loc[:, 1]
 
 
+#: the most frames one animation may have (a GIF frame is held as 1 byte per pixel until written)
+MAX_FRAMES = 5000
+
+
 def animate(results_file, out, frames: int = 120, fps: int = 20, last_revs: float | None = None):
     """Write a GIF (pillow) or MP4 (ffmpeg, ``[video]`` extra) of the run in ``results_file``.
 
-    ``frames``: number of frames (≥ 2); ``fps``: frames per second; ``last_revs``: animate only
-    the last N crank revolutions [-] (default: the whole run)."""
+    ``frames``: number of frames (2 … :data:`MAX_FRAMES`); ``fps``: frames per second;
+    ``last_revs``: animate only the last N crank revolutions [-] (default: the whole run).
+    The static parts of the figure are drawn once; each frame redraws only the moving artists
+    onto a copy of that background (blitting) and is streamed to the writer [T227]."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    from matplotlib.animation import FFMpegWriter, FuncAnimation, PillowWriter
     from matplotlib.patches import Polygon
 
     from jointdyn.core.constraints import Translational
     from jointdyn.simulation.results import Results
     from jointdyn.viz import plots
 
-    if frames < 2:
-        raise ValueError(f"frames = {frames!r} [-]: must be ≥ 2")
+    if not 2 <= frames <= MAX_FRAMES:
+        raise ValueError(f"frames = {frames!r} [-]: must be 2 … {MAX_FRAMES}")
     res = Results.load(results_file)
     if last_revs:
         res = res.last_revolutions(last_revs)
@@ -137,23 +145,71 @@ def animate(results_file, out, frames: int = 120, fps: int = 20, last_revs: floa
         return list(lines.values())
 
     fig.tight_layout()
-    anim = FuncAnimation(fig, draw, frames=len(idx), blit=False)
+    moving = [*lines.values(), *(b[0] for b in blocks), *(d[0] for d in insets), title]
+    if mark is not None:
+        moving.append(mark)
+    moving.sort(key=lambda a: a.get_zorder())  # drawn in the order a full draw would use
+    for a in moving:
+        a.set_animated(True)  # left out of the full draw: the background is static
     out = Path(out)
-    if out.suffix == ".mp4":
-        try:  # the [video] extra ships an ffmpeg binary inside its wheel
-            import imageio_ffmpeg
-
-            matplotlib.rcParams["animation.ffmpeg_path"] = imageio_ffmpeg.get_ffmpeg_exe()
-        except ImportError:
-            if not FFMpegWriter.isAvailable():
-                plt.close(fig)
-                raise RuntimeError("MP4 needs ffmpeg: pip install -e '.[video]' (or write a .gif)") from None
-        writer = FFMpegWriter(fps=fps)
-    else:
-        writer = PillowWriter(fps=fps)
-    anim.save(out, writer=writer)
+    with _writer(out, fig, fps) as write:
+        fig.canvas.draw()
+        background = fig.canvas.copy_from_bbox(fig.bbox)
+        for j in range(len(idx)):
+            draw(j)
+            fig.canvas.restore_region(background)
+            for a in moving:
+                fig.draw_artist(a)
+            write(np.asarray(fig.canvas.buffer_rgba()))
     plt.close(fig)
     return out
+
+
+@contextlib.contextmanager
+def _writer(out: Path, fig, fps: int):
+    """A frame sink for RGBA arrays: GIF frames quantised to a 256-colour palette as they come
+    (1 byte per pixel held until the file is written), MP4 frames piped to ffmpeg as raw video."""
+    w, h = (int(v) for v in fig.canvas.get_width_height(physical=True))
+    if out.suffix == ".mp4":
+        exe = _ffmpeg()
+        cmd = [exe, "-v", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgba", "-s", f"{w}x{h}"]
+        cmd += ["-r", str(fps), "-i", "-", "-pix_fmt", "yuv420p", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2"]
+        proc = subprocess.Popen([*cmd, str(out)], stdin=subprocess.PIPE, stderr=subprocess.PIPE)
+        try:
+            yield lambda rgba: proc.stdin.write(np.ascontiguousarray(rgba).tobytes())
+        finally:
+            proc.stdin.close()
+            err = proc.stderr.read().decode(errors="replace")
+            if proc.wait() != 0:
+                raise RuntimeError(f"ffmpeg failed writing {out}: {err.strip()[-300:]}")
+        return
+    from PIL import Image
+
+    frames: list = []
+    palette = None
+
+    def add(rgba):
+        nonlocal palette
+        im = Image.fromarray(rgba[..., :3])
+        if palette is None:  # one palette for the whole film: no flicker between frames
+            palette = im.quantize(colors=256, method=Image.Quantize.MEDIANCUT)
+        frames.append(im.quantize(palette=palette, dither=Image.Dither.NONE))
+
+    yield add
+    frames[0].save(out, save_all=True, append_images=frames[1:], duration=1000 / fps, loop=0, optimize=False)
+
+
+def _ffmpeg() -> str:
+    """The ffmpeg binary of the ``[video]`` extra (imageio-ffmpeg), else one on the PATH."""
+    try:
+        import imageio_ffmpeg
+
+        return imageio_ffmpeg.get_ffmpeg_exe()
+    except ImportError:
+        exe = shutil.which("ffmpeg")
+        if exe is None:
+            raise RuntimeError("MP4 needs ffmpeg: pip install -e '.[video]' (or write a .gif)") from None
+        return exe
 
 
 def frame_png(results_file, out, fraction: float = 0.5, **kw) -> Path:
