@@ -111,42 +111,58 @@ def simulate_row(name, repeat):
     }
 
 
-# runs one command in a child and prints its wall time [s] and peak RSS [kB]: a fresh parent per
-# measurement, so RUSAGE_CHILDREN holds exactly that command (not the cold run before it)
+# runs one command in a child and prints its wall time [s], peak RSS [kB] and CPU time (user +
+# sys) [s]: a fresh parent per measurement, so RUSAGE_CHILDREN holds exactly that command (not
+# the cold run before it) and every process the command started and waited for
 _MEASURE = (
     "import resource, subprocess, sys, time; t0 = time.perf_counter(); "
     "subprocess.run(sys.argv[1:], check=True, capture_output=True); "
-    "print(time.perf_counter() - t0, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)"
+    "r = resource.getrusage(resource.RUSAGE_CHILDREN); "
+    "print(time.perf_counter() - t0, r.ru_maxrss, r.ru_utime + r.ru_stime)"
 )
 
 
-def measure(cmd: list[str], env: dict) -> tuple[float, float]:
-    """(wall time [s], peak RSS [MB]) of ``cmd`` run in a fresh process with ``env``."""
+def measure(cmd: list[str], env: dict) -> tuple[float, float, float]:
+    """(wall time [s], peak RSS [MB], CPU time user + sys [s]) of ``cmd`` in a fresh process."""
     r = subprocess.run(
         [sys.executable, "-c", _MEASURE, *cmd], check=True, env=env, cwd=ROOT, capture_output=True, text=True
     )
-    wall, rss = r.stdout.split()
-    return float(wall), float(rss) / 1024
+    wall, rss, cpu = r.stdout.split()
+    return float(wall), float(rss) / 1024, float(cpu)
+
+
+def new_user_env(home: str) -> dict:
+    """The environment of a new user: an empty ``home`` and no cache settings (jointdyn's kernel
+    and table caches, matplotlib's font cache, all start empty), as the README's first command."""
+    drop = ("XDG_CACHE_HOME", "NUMBA_CACHE_DIR", "NUMBA_OPT", "MPLCONFIGDIR")
+    return {**{k: v for k, v in os.environ.items() if k not in drop}, "HOME": home}
+
+
+def machine_load() -> str:
+    """The 1-minute load average and the core count, to print beside timings (a shared machine)."""
+    return f"load average {os.getloadavg()[0]:.2f} on {os.cpu_count()} cores"
 
 
 def cli_row(joint):
-    """(warm [s], cold [s], peak RSS of the cold and the warm run [MB]) of the CLI run, each in a
-    fresh process."""
+    """Wall and CPU times [s] and peak RSS [MB] of the CLI run, each in a fresh process: cold as a
+    new user starts (empty home, :func:`new_user_env`), then warm twice in that home."""
     exe = [sys.executable, "-m", "jointdyn", "run", "slider-crank", "--joint", joint, "--revs", str(REVS)]
     out = {}
-    with tempfile.TemporaryDirectory() as cache:
-        cold_env = dict(os.environ, NUMBA_CACHE_DIR=os.path.join(cache, "numba"), XDG_CACHE_HOME=cache)
+    with tempfile.TemporaryDirectory() as home:
+        env = new_user_env(home)
         for label in ("cold", "warm", "warm2"):
             with tempfile.TemporaryDirectory() as d:
-                out[label], out[label + "_rss"] = measure([*exe, "--out", os.path.join(d, "o")], cold_env)
+                out[label] = measure([*exe, "--out", os.path.join(d, "o")], env)
     warm = min(out["warm"], out["warm2"])
     return {
         "case": f"cli {joint}",
-        "cli_warm_s": warm,
-        "cli_cold_s": out["cold"],
-        "cold/warm": out["cold"] / warm,
-        "rss_cold_MB": out["cold_rss"],
-        "rss_warm_MB": max(out["warm_rss"], out["warm2_rss"]),
+        "cli_warm_s": warm[0],
+        "cli_warm_cpu_s": min(out["warm"][2], out["warm2"][2]),
+        "cli_cold_s": out["cold"][0],
+        "cli_cold_cpu_s": out["cold"][2],
+        "cold/warm": out["cold"][0] / warm[0],
+        "rss_cold_MB": out["cold"][1],
+        "rss_warm_MB": max(out["warm"][1], out["warm2"][1]),
     }
 
 
@@ -171,6 +187,7 @@ def main(argv=None):
         help="also write the result into FILE's <!-- generated:speed --> block",
     )
     a = ap.parse_args(argv)
+    load_start = machine_load()
     names = ["perfect", "alshaer2005"] if a.quick else a.cases.split(",")
     rows = [simulate_row(n, 1 if a.quick else a.repeat) for n in names]
     cols = ["case", "solver", "rtol", "simulate_s", "integrate_s", "outputs_s", "save_s", "rhs", "error"]
@@ -191,8 +208,21 @@ def main(argv=None):
         )
     if not (a.quick or a.no_cli):
         cli = [cli_row(j) for j in CLI_JOINTS]
-        cols = ["case", "cli_warm_s", "cli_cold_s", "cold/warm", "rss_cold_MB", "rss_warm_MB"]
+        cols = [
+            "case",
+            "cli_warm_s",
+            "cli_warm_cpu_s",
+            "cli_cold_s",
+            "cli_cold_cpu_s",
+            "cold/warm",
+            "rss_cold_MB",
+            "rss_warm_MB",
+        ]
         lines += ["", _table(cli, cols)]
+    lines += [
+        "",
+        f"Machine: {load_start} at the start, {machine_load()} at the end (CPU seconds hold under load).",
+    ]
     text = "\n".join(lines)
     print(text)
     if a.write is not None:
