@@ -18,8 +18,9 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn.forces.journal import OUTPUTS as _JOURNAL_OUTPUTS
+from jointdyn.multibody.model import Model
 from jointdyn.multibody.system import System
-from jointdyn.simulation.saved import load_dataset, system_from_dict
+from jointdyn.simulation.saved import load_arrays, load_dataset
 
 # labels of the saved "output" dimension: the journal elements' outputs (other elements' columns
 # are named by their class's OUTPUTS, see Results.element and the attribute element_units)
@@ -325,6 +326,7 @@ class Results:
                     var[...] = arr
                     var.attrs["units"] = _VARIABLES[name][1]
                 f.attrs.update(self._provenance())
+                _write_arrays(f.create_group("system"), self.system.arrays())
             os.replace(tmp, path)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
@@ -332,18 +334,21 @@ class Results:
 
     @classmethod
     def load(cls, path) -> Results:
-        """Read a file written by :meth:`save` back into :class:`Results` (the system is rebuilt
-        from the stored model description). Raises ``ValueError`` (one line) on a corrupt or
-        foreign file."""
-        return cls.from_dataset(load_dataset(path), source=str(path))
+        """Read a file written by :meth:`save` back into :class:`Results`: the system is the
+        stored model description with the stored compiled arrays (nothing is compiled; files
+        without them, written before they were stored, compile the model). Raises
+        ``ValueError`` (one line) on a corrupt or foreign file."""
+        return cls.from_dataset(load_dataset(path), source=str(path), arrays=load_arrays(path))
 
     @classmethod
-    def from_dataset(cls, ds, source: str = "dataset") -> Results:
-        """:class:`Results` from the archival Dataset (:meth:`to_dataset`, a loaded ``results.nc``)."""
+    def from_dataset(cls, ds, source: str = "dataset", arrays: dict | None = None) -> Results:
+        """:class:`Results` from the archival Dataset (:meth:`to_dataset`, a loaded ``results.nc``);
+        ``arrays``: the system's compiled arrays (``System.arrays``), else the model is compiled."""
         need = {"q", "qd", "qdd", "lam", "element_outputs", "drift_position", "drift_velocity"}
         if not need <= set(ds.data_vars) or "model" not in ds.attrs:
             raise ValueError(f"{source}: not a jointdyn results file (needs variables {sorted(need)})")
-        system = system_from_dict(json.loads(ds.attrs["model"]))
+        model = Model.from_dict(json.loads(ds.attrs["model"]))
+        system = model.compile() if arrays is None else model.recompose(arrays)
         nt, ne = ds.sizes["time"], len(system.element_names)
         mem = (
             ds["element_memory"].values
@@ -412,6 +417,16 @@ class Results:
             "meta": json.dumps(self.meta, default=str),
             "element_units": json.dumps(units),
         }
+
+
+def _write_arrays(group, arrays: dict) -> None:
+    """The compiled arrays into a netCDF group, one dimension per axis, checksummed."""
+    for k, a in arrays.items():
+        a = np.asarray(a)
+        dims = tuple(f"{k}_{i}" for i in range(a.ndim))
+        group.dimensions.update(dict(zip(dims, a.shape)))
+        var = group.create_variable(k, dims, a.dtype, fletcher32=True)
+        var[...] = a
 
 
 def _labels(names, width: int, prefix: str) -> list[str]:
