@@ -56,6 +56,8 @@ class Revolute:
     """name of a point of body_j (coordinates in the body frame)"""
     code: ClassVar[int] = REVOLUTE
     rows: ClassVar[int] = 2
+    LAMBDA_UNITS: ClassVar[tuple[str, ...]] = ("N", "N")
+    """unit of each λ row (generic code asks this; default: ``N`` per row)"""
     REAL: ClassVar[Layout] = REVOLUTE_REAL
 
     def pack(self, angle_of) -> dict:
@@ -92,6 +94,8 @@ class Translational:
     """locked relative angle θ₀ = φ_j − φ_i; None takes it from the initial guess [rad]"""
     code: ClassVar[int] = TRANSLATIONAL
     rows: ClassVar[int] = 2
+    LAMBDA_UNITS: ClassVar[tuple[str, ...]] = ("N", "N·m")
+    """the normal force, then the moment that keeps the angle"""
     REAL: ClassVar[Layout] = TRANSLATIONAL_REAL
 
     def pack(self, angle_of) -> dict:
@@ -127,6 +131,10 @@ class AngleDriver:
     """constant angular acceleration [rad/s²]"""
     code: ClassVar[int] = ANGLE_DRIVER
     rows: ClassVar[int] = 1
+    LAMBDA_UNITS: ClassVar[tuple[str, ...]] = ("N·m",)
+    """the driving moment"""
+    DRIVES_ANGLE: ClassVar[bool] = True
+    """it turns ``body_j`` (``Results.driver``/``crank_angle`` look for the first such constraint)"""
     REAL: ClassVar[Layout] = ANGLE_DRIVER_REAL
     point_i: ClassVar[None] = None
     point_j: ClassVar[None] = None

@@ -119,6 +119,11 @@ class ClearanceJoint:
     """output columns written by the kernel (name -> unit), world frame, force on the journal"""
     MEMORY: ClassVar[dict[str, str]] = MEMORY
     """memory slots (name -> unit), changed only after accepted steps"""
+    STIFF: ClassVar[bool] = False
+    """capability: the element makes the equations stiff (``solver="auto"`` then picks radau5 [T116])"""
+    ORBIT: ClassVar[tuple[str, str]] = ("ex", "ey")
+    """capability: the outputs holding the journal-centre offset e = P_j − P_i, world frame [m];
+    with ``clearance`` they give the orbit e/c (``Results.journals``/``orbit``)"""
 
     @property
     def clearance(self) -> float:
@@ -153,6 +158,24 @@ class ClearanceJoint:
 
     def _film(self):
         return None
+
+    def error_length(self) -> float:
+        """Capability: the length the error test measures this element's positions against, the
+        clearance c [m] [T186] (``SimConfig.error_scale = "clearance"``)."""
+        return self.clearance
+
+    def failure_hint(self, name: str, out: dict) -> str:
+        """Capability: what this element's outputs ``out`` (name -> value) at a failed run's last
+        state say about the failure, or ''. Near the wall (ξ > 0.99) the film is stiff: the usual
+        cause of a step-size collapse; a film without a contact law cannot carry the load there."""
+        if not out["xi"] > 0.99:
+            return ""
+        advice = (
+            "; the film alone cannot carry the load there — give the bearing a contact law (mixed regime)"
+            if self._film() is not None and self.contact is None
+            else ""
+        )
+        return f"element {name!r} was at ξ = {out['xi']:.6f} (h_min = {out['h_min']:.3g} m){advice}"
 
     @classmethod
     def example(cls):
@@ -239,9 +262,15 @@ class JournalBearing:
     """output columns written by the kernel (name -> unit), world frame, force on the journal"""
     MEMORY: ClassVar[dict[str, str]] = MEMORY
     """memory slots (name -> unit), changed only after accepted steps"""
+    STIFF: ClassVar[bool] = True
+    """capability: the film makes the equations stiff (``solver="auto"`` then picks radau5 [T116])"""
+    ORBIT: ClassVar[tuple[str, str]] = ("ex", "ey")
+    """capability: the outputs holding the journal-centre offset e = P_j − P_i, world frame [m]"""
 
     clearance = ClearanceJoint.clearance
     pack = ClearanceJoint.pack
+    error_length = ClearanceJoint.error_length
+    failure_hint = ClearanceJoint.failure_hint
 
     def _film(self):
         return film_model(self.film)

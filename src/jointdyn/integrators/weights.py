@@ -24,8 +24,7 @@ import math
 
 import numpy as np
 
-from jointdyn.core.layout import ETA_I, ETA_J, TYPE, XI_I, XI_J
-from jointdyn.forces.journal import CLR, JOURNAL
+from jointdyn.core.layout import ETA_I, ETA_J, XI_I, XI_J
 
 # rtol = 1e-8 (the default) ↔ 3e-6 of the clearance: the loosest clearance rtol of the measured
 # ladder that kept every pure-film case of [T116] ≤ 4.1e-5 of the peak moment, and 300 ≈ the
@@ -35,19 +34,21 @@ AUTO_CLEARANCE_RATIO = 300.0
 
 
 def clearance_scale(system, t_span: float) -> np.ndarray:
-    """Fixed error scales Y (2n,) [m, rad, m/s, rad/s] of the state [q, q̇] [T186]; raises
-    ValueError when the system has no journal element (no clearance to measure against)."""
+    """Fixed error scales Y (2n,) [m, rad, m/s, rad/s] of the state [q, q̇] [T186]; the lengths
+    are the ``error_length()`` the elements declare (journal elements: their clearance). Raises
+    ValueError when no element declares one (no clearance to measure against)."""
     n = system.n
-    journal = [k for k in range(system.fint.shape[0]) if system.fint[k, TYPE] == JOURNAL]  # film or dry
-    if not journal:
+    declared = enumerate(system.elements)
+    lengths = {k: float(e.error_length()) for k, e in declared if hasattr(e, "error_length")}
+    if not lengths:
         raise ValueError(
             "SimConfig.error_scale = 'clearance': the system has no journal element (no clearance "
             "to measure the error against); use 'state'"
         )
     freal = system.freal
-    c_min = min(float(freal[k, CLR]) for k in journal)
-    arms = [math.hypot(freal[k, XI_I], freal[k, ETA_I]) for k in journal]
-    arms += [math.hypot(freal[k, XI_J], freal[k, ETA_J]) for k in journal]
+    c_min = min(lengths.values())
+    arms = [math.hypot(freal[k, XI_I], freal[k, ETA_I]) for k in lengths]
+    arms += [math.hypot(freal[k, XI_J], freal[k, ETA_J]) for k in lengths]
     for body in system.model_dict.get("bodies", {}).values():  # every point of every body
         arms += [math.hypot(*p) for p in body.get("points", {}).values()]
     ell = max(max(arms), c_min)  # a system of point masses: rotations scaled like translations

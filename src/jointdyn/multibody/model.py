@@ -11,7 +11,7 @@ points are given in world coordinates.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -19,6 +19,7 @@ import numpy as np
 from jointdyn.core.constraints import CONSTRAINTS, Revolute, constraint_table, eval_constraints
 from jointdyn.errors import ModelError
 from jointdyn.forces import elements as fe
+from jointdyn.multibody import codec
 from jointdyn.multibody.dynamics import project_positions, project_velocities
 
 GROUND = "ground"
@@ -147,14 +148,11 @@ class Model:
         clearance joints) are assembled centred: during the analysis they act as ideal revolute
         joints (e = 0, ė = 0); otherwise the bodies' given positions and velocities set e and ė.
         """
-        from jointdyn.multibody.system import System
-
         if not self.bodies:
             raise ModelError("the model has no bodies")
         for b in self.bodies.values():
             b.validate()
-        constraints = [(n, c) for n, c in self.items.items() if type(c) in CONSTRAINTS.values()]
-        elements = [(n, e) for n, e in self.items.items() if type(e) in fe.FORCE_ELEMENTS.values()]
+        constraints, elements = self._split()
         for n, c in constraints + elements:
             bi, bj = c.body_i, c.body_j
             index = self._body_index(f"element {n!r}")
@@ -172,11 +170,7 @@ class Model:
                     raise ModelError(f"element {n!r}: {err}") from None
         index = self._body_index("model")
         point_of = self._point_of("model")
-        cint, creal, m = constraint_table([c for _, c in constraints], index, point_of, self._angle_of)
-        rows, r = [], 0
-        for _, c in constraints:
-            rows.append((r, r + c.rows))
-            r += c.rows
+        cint, creal, _ = constraint_table([c for _, c in constraints], index, point_of, self._angle_of)
         fint, freal, tables, mem0 = fe.element_tables([e for _, e in elements], index, point_of)
 
         nb = len(self.bodies)
@@ -201,6 +195,27 @@ class Model:
             raise ModelError(f"over-constrained: {am} constraint equations for {3 * nb} coordinates")
         y0 = np.concatenate([q, qd])
         _assemble(y0, acint, acreal, am, minv, position_tol, max_iter)
+        return self._system(
+            constraints,
+            elements,
+            dict(minv=minv, q0_force=q0f, cint=cint, creal=creal, fint=fint, freal=freal, tables=tables),
+            y0,
+            mem0,
+        )
+
+    def _split(self) -> tuple[list, list]:
+        """(name, constraint) and (name, force element) pairs, each in the order added."""
+        constraints = [(n, c) for n, c in self.items.items() if type(c) in CONSTRAINTS.values()]
+        elements = [(n, e) for n, e in self.items.items() if type(e) in fe.FORCE_ELEMENTS.values()]
+        return constraints, elements
+
+    def _system(self, constraints, elements, arrays: dict, y0, mem0):
+        from jointdyn.multibody.system import System
+
+        rows, r = [], 0
+        for _, c in constraints:
+            rows.append((r, r + c.rows))
+            r += c.rows
         return System(
             name=self.name,
             body_names=tuple(self.bodies),
@@ -209,48 +224,54 @@ class Model:
             element_names=tuple(n for n, _ in elements),
             constraints=tuple(c for _, c in constraints),
             elements=tuple(e for _, e in elements),
-            minv=minv,
-            q0_force=q0f,
-            cint=cint,
-            creal=creal,
-            fint=fint,
-            freal=freal,
-            tables=tables,
-            n_rows=m,
+            n_rows=r,
             y0=y0,
             mem0=mem0,
             gravity=self.gravity,
             model_dict=self.to_dict(),
+            **arrays,
         )
 
-    def to_dict(self) -> dict:
-        """Plain-data description (for provenance and model files)."""
-        from jointdyn.film.models import FILM_MODELS
-        from jointdyn.forces.contact_laws import CONTACT_LAWS
-        from jointdyn.forces.friction_laws import FRICTION_LAWS
-
-        laws = {v: k for k, v in {**CONTACT_LAWS, **FRICTION_LAWS, **FILM_MODELS}.items()}
-
-        def value(v):
-            if type(v) in laws:  # a law instance: {"law": name, **its fields}
-                return {"law": laws[type(v)], **{f.name: getattr(v, f.name) for f in fields(v)}}
-            return list(v) if isinstance(v, tuple) else v
-
-        def item(x):
-            d = {"type": next(k for k, v in {**CONSTRAINTS, **fe.FORCE_ELEMENTS}.items() if v is type(x))}
-            d.update({f.name: value(getattr(x, f.name)) for f in fields(x)})
-            return d
-
-        return {
-            "name": self.name,
-            "gravity": list(self.gravity),
-            "bodies": {
-                n: {f.name: getattr(b, f.name) for f in fields(b) if f.name != "name"}
-                for n, b in self.bodies.items()
-            },
-            "ground_points": dict(self.ground_points),
-            "items": {n: item(x) for n, x in self.items.items()},
+    def recompose(self, arrays: dict):
+        """The System that :meth:`compile` made of this model, from its arrays as
+        :meth:`~jointdyn.multibody.system.System.arrays` gave them (a results file stores them):
+        no assembly, no film tables, no compiled code. ``ModelError`` if they do not fit the
+        model (a different number of bodies, constraint rows or elements)."""
+        constraints, elements = self._split()
+        names = ("minv", "q0_force", "cint", "creal", "fint", "freal", "tables")
+        a = {k: np.asarray(arrays[k]) for k in names}
+        expect = {
+            "minv": (3 * len(self.bodies),),
+            "cint": (len(constraints),),
+            "fint": (len(elements),),
+            "y0": (6 * len(self.bodies),),
+            "mem0": (len(elements),),
         }
+        for k, shape in expect.items():
+            got = np.shape(arrays[k])[: len(shape)]
+            if got != shape:
+                have = np.shape(arrays[k])
+                raise ModelError(f"compiled array {k!r} has shape {have}; the model needs {shape}")
+        y0, mem0 = np.array(arrays["y0"], dtype=float), np.array(arrays["mem0"], dtype=float)
+        return self._system(constraints, elements, a, y0, mem0)
+
+    def to_dict(self) -> dict:
+        """Plain-data description (the layout of a model file, :mod:`jointdyn.multibody.codec`)."""
+        return codec.encode(self)
+
+    @classmethod
+    def from_dict(cls, d: dict) -> Model:
+        """The model described by ``d`` (:meth:`to_dict`, or the ``model`` attribute of a
+        results file of any version)."""
+        kwargs, points, bodies, items = codec.decode(d)
+        m = cls(**kwargs)
+        for p, xy in points.items():
+            m.add_ground_point(p, xy)
+        for n, b in bodies.items():
+            m.add_body(n, **b)
+        for n, item in items.items():
+            m.add(n, item)
+        return m
 
 
 def _assemble(y, cint, creal, m, minv, tol, max_iter):

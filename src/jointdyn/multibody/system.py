@@ -66,6 +66,14 @@ class System:
     gravity: tuple[float, float]
     model_dict: dict = field(default_factory=dict, compare=False)
 
+    #: the compiled arrays (:meth:`arrays`): with the model they give back the System without
+    #: compiling (``Model.recompose``)
+    ARRAYS = ("minv", "q0_force", "cint", "creal", "fint", "freal", "tables", "y0", "mem0")
+
+    def arrays(self) -> dict[str, np.ndarray]:
+        """The compiled arrays by name (``ARRAYS``)."""
+        return {k: getattr(self, k) for k in self.ARRAYS}
+
     @property
     def n(self) -> int:
         """Number of coordinates (3 per moving body)."""

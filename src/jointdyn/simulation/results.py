@@ -17,13 +17,9 @@ from pathlib import Path
 
 import numpy as np
 
-from jointdyn.forces.journal import OUTPUTS as _JOURNAL_OUTPUTS
+from jointdyn.multibody.model import Model
 from jointdyn.multibody.system import System
-from jointdyn.simulation.saved import load_dataset, system_from_dict
-
-# labels of the saved "output" dimension: the journal elements' outputs (other elements' columns
-# are named by their class's OUTPUTS, see Results.element and the attribute element_units)
-OUT_COLUMNS = tuple(_JOURNAL_OUTPUTS)
+from jointdyn.simulation.saved import load_arrays, load_dataset
 
 #: netCDF variables of the archival layout: name -> (dimensions, unit)
 _VARIABLES = {
@@ -122,17 +118,17 @@ class Results:
 
     # -- convenience ----------------------------------------------------------------------------
     def journals(self) -> list[str]:
-        """Names of the journal elements (clearance joints and journal bearings)."""
-        return [n for n, e in zip(self.system.element_names, self.system.elements) if hasattr(e, "clearance")]
+        """Names of the journal elements: those whose class declares an ``ORBIT`` (clearance
+        joints and journal bearings)."""
+        s = self.system
+        return [n for n, e in zip(s.element_names, s.elements) if getattr(type(e), "ORBIT", None)]
 
     def clearance(self, name: str) -> float:
         """Radial clearance c = R_B − R_J of journal element ``name`` [m]."""
-        k, _ = self._element(name)
-        el = self.system.elements[k]
-        if not hasattr(el, "clearance"):
-            kind = type(el).__name__
-            raise KeyError(f"element {name!r} ({kind}) has no clearance; journals: {self.journals()}")
-        return float(el.clearance)
+        k, cls = self._element(name)
+        if name not in self.journals():
+            raise KeyError(f"element {name!r} ({cls.__name__}) has no clearance; journals: {self.journals()}")
+        return float(self.system.elements[k].clearance)
 
     def orbit(self, name: str, frame: str = "bushing") -> tuple[np.ndarray, np.ndarray]:
         """Journal-centre path of element ``name`` as (e_x/c, e_y/c) [-].
@@ -140,7 +136,8 @@ class Results:
         ``frame="world"``: eccentricity components in the world frame (as the kernel writes them);
         ``frame="bushing"``: rotated into the frame of the bushing body (body i) [T14]."""
         c = self.clearance(name)
-        ex, ey = self.element(name, "ex") / c, self.element(name, "ey") / c
+        x, y = self._element(name)[1].ORBIT
+        ex, ey = self.element(name, x) / c, self.element(name, y) / c
         if frame == "world":
             return ex, ey
         if frame != "bushing":
@@ -154,20 +151,15 @@ class Results:
 
     def driver(self) -> str:
         """Name of the first angle driver (the crank drive of a mechanism)."""
-        from jointdyn.core.constraints import AngleDriver
-
         for n, c in zip(self.system.constraint_names, self.system.constraints):
-            if isinstance(c, AngleDriver):
+            if getattr(type(c), "DRIVES_ANGLE", False):
                 return n
         names = list(self.system.constraint_names)
         raise KeyError(f"{self.system.name!r} has no angle driver; constraints: {names}")
 
     def crank_angle(self) -> np.ndarray:
         """Unwrapped angle of the body the first angle driver turns [rad]."""
-        from jointdyn.core.constraints import AngleDriver
-
         c = self.system.constraints[self.system.constraint_names.index(self.driver())]
-        assert isinstance(c, AngleDriver)
         return self.coordinate(c.body_j, "phi")
 
     def last_revolutions(self, n: float = 1.0) -> Results:
@@ -325,6 +317,7 @@ class Results:
                     var[...] = arr
                     var.attrs["units"] = _VARIABLES[name][1]
                 f.attrs.update(self._provenance())
+                _write_arrays(f.create_group("system"), self.system.arrays())
             os.replace(tmp, path)
         except BaseException:
             Path(tmp).unlink(missing_ok=True)
@@ -332,18 +325,21 @@ class Results:
 
     @classmethod
     def load(cls, path) -> Results:
-        """Read a file written by :meth:`save` back into :class:`Results` (the system is rebuilt
-        from the stored model description). Raises ``ValueError`` (one line) on a corrupt or
-        foreign file."""
-        return cls.from_dataset(load_dataset(path), source=str(path))
+        """Read a file written by :meth:`save` back into :class:`Results`: the system is the
+        stored model description with the stored compiled arrays (nothing is compiled; files
+        without them, written before they were stored, compile the model). Raises
+        ``ValueError`` (one line) on a corrupt or foreign file."""
+        return cls.from_dataset(load_dataset(path), source=str(path), arrays=load_arrays(path))
 
     @classmethod
-    def from_dataset(cls, ds, source: str = "dataset") -> Results:
-        """:class:`Results` from the archival Dataset (:meth:`to_dataset`, a loaded ``results.nc``)."""
+    def from_dataset(cls, ds, source: str = "dataset", arrays: dict | None = None) -> Results:
+        """:class:`Results` from the archival Dataset (:meth:`to_dataset`, a loaded ``results.nc``);
+        ``arrays``: the system's compiled arrays (``System.arrays``), else the model is compiled."""
         need = {"q", "qd", "qdd", "lam", "element_outputs", "drift_position", "drift_velocity"}
         if not need <= set(ds.data_vars) or "model" not in ds.attrs:
             raise ValueError(f"{source}: not a jointdyn results file (needs variables {sorted(need)})")
-        system = system_from_dict(json.loads(ds.attrs["model"]))
+        model = Model.from_dict(json.loads(ds.attrs["model"]))
+        system = model.compile() if arrays is None else model.recompose(arrays)
         nt, ne = ds.sizes["time"], len(system.element_names)
         mem = (
             ds["element_memory"].values
@@ -357,7 +353,7 @@ class Results:
             mem=_shaped(mem, (nt, ne, system.mem0.shape[-1])),
             qdd=ds["qdd"].values,
             lam=_shaped(ds["lam"].values, (nt, system.n_rows)),
-            eout=_shaped(ds["element_outputs"].values, (nt, ne, ds.sizes.get("output", len(OUT_COLUMNS)))),
+            eout=_shaped(ds["element_outputs"].values, (nt, ne, ds.sizes.get("output", 0))),
             drift=np.stack([ds["drift_position"].values, ds["drift_velocity"].values], axis=1),
             stats=json.loads(ds.attrs.get("stats", "{}")),
             wall_time=float(ds.attrs.get("wall_time_s", math.nan)),
@@ -376,9 +372,15 @@ class Results:
             "coordinate": s.coordinate_labels(),
             "row": rows,
             "element": list(s.element_names),
-            "output": _labels(OUT_COLUMNS, self.eout.shape[-1], "col"),
+            "output": _labels(self._output_names(), self.eout.shape[-1], "col"),
             "memory": _labels((), self.mem.shape[-1], "slot"),
         }
+
+    def _output_names(self) -> tuple:
+        """Labels of the ``output`` dimension: the ``OUTPUTS`` the elements' classes declare when
+        they all declare the same, else none (``col0``, … ; per element in ``element_units``)."""
+        kinds = {tuple(type(e).OUTPUTS) for e in self.system.elements}
+        return kinds.pop() if len(kinds) == 1 else ()
 
     def _coordinate_units(self) -> list[str]:
         return ["m", "m", "rad"] * len(self.system.body_names)
@@ -414,6 +416,16 @@ class Results:
         }
 
 
+def _write_arrays(group, arrays: dict) -> None:
+    """The compiled arrays into a netCDF group, one dimension per axis, checksummed."""
+    for k, a in arrays.items():
+        a = np.asarray(a)
+        dims = tuple(f"{k}_{i}" for i in range(a.ndim))
+        group.dimensions.update(dict(zip(dims, a.shape)))
+        var = group.create_variable(k, dims, a.dtype, fletcher32=True)
+        var[...] = a
+
+
 def _labels(names, width: int, prefix: str) -> list[str]:
     """``names`` cut or padded (``prefix0``, ``prefix1``, …) to ``width`` labels."""
     return [names[i] if i < len(names) else f"{prefix}{i}" for i in range(width)]
@@ -425,14 +437,8 @@ def _shaped(a: np.ndarray, shape: tuple) -> np.ndarray:
 
 
 def _lambda_units(c) -> list[str]:
-    """Unit of each λ row of a constraint: a driver's λ is a moment, position rows are forces."""
-    from jointdyn.core.constraints import AngleDriver, Translational
-
-    if isinstance(c, AngleDriver):
-        return ["N·m"]
-    if isinstance(c, Translational):
-        return ["N", "N·m"]  # normal force, then the moment that keeps the angle
-    return ["N"] * type(c).rows
+    """Unit of each λ row of a constraint, as its class declares (``LAMBDA_UNITS``; else N)."""
+    return list(getattr(type(c), "LAMBDA_UNITS", ("N",) * type(c).rows))
 
 
 def load(path):

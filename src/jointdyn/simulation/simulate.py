@@ -63,26 +63,14 @@ def _message(system: System, status: int) -> str:
 
 
 def _element_hint(system: System, P, t, y, mem) -> str:
-    """Point at journal elements that were at the bearing wall when the run failed."""
-    from jointdyn.forces.journal import ClearanceJoint, JournalBearing
-
+    """What the elements that declare ``failure_hint`` say about the state where the run failed."""
     _, _, eout, _ = outputs(np.array([t]), y[None, :].copy(), mem[None].copy(), P, False)
     hints = []
     for k, (name, el) in enumerate(zip(system.element_names, system.elements)):
-        if isinstance(el, (JournalBearing, ClearanceJoint)):
-            cols = list(el.OUTPUTS)
-            xi = float(eout[0, k, cols.index("xi")])
-            h_min = float(eout[0, k, cols.index("h_min")])
-            if xi > 0.99:  # near the wall the film is stiff: the usual cause of step collapse
-                hints.append(
-                    f"element {name!r} was at ξ = {xi:.6f} (h_min = {h_min:.3g} m)"
-                    + (
-                        "; the film alone cannot carry the load there — give "
-                        "the bearing a contact law (mixed regime)"
-                        if isinstance(el, JournalBearing) and el.contact is None
-                        else ""
-                    )
-                )
+        hint = getattr(el, "failure_hint", None)
+        if hint is not None:
+            hints.append(hint(name, {o: float(v) for o, v in zip(el.OUTPUTS, eout[0, k])}))
+    hints = [h for h in hints if h]
     return ("; " + "; ".join(hints)) if hints else ""
 
 
@@ -181,13 +169,11 @@ class SimConfig:
 
 
 def resolve_solver(system: System, name: str) -> str:
-    """``"auto"`` -> ``radau5`` if a journal bearing carries a film (stiff), else ``dopri5``
-    (choice measured with ``python -m benchmarks.work_precision`` [T116])."""
+    """``"auto"`` -> ``radau5`` if an element declares itself stiff (``STIFF``: a journal bearing's
+    film), else ``dopri5`` (choice measured with ``python -m benchmarks.work_precision`` [T116])."""
     if name != "auto":
         return name
-    from jointdyn.forces.journal import JournalBearing
-
-    return "radau5" if any(isinstance(e, JournalBearing) for e in system.elements) else "dopri5"
+    return "radau5" if any(getattr(e, "STIFF", False) for e in system.elements) else "dopri5"
 
 
 def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget, ysc=None, rtol=None):

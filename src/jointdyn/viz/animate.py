@@ -69,7 +69,7 @@ def animate(results_file, out, frames: int = 120, fps: int = 20, last_revs: floa
     ]
     allx = np.concatenate([_world(q, bodies, b, i, outlines[b])[0] for b in bodies for i in idx])
     ally = np.concatenate([_world(q, bodies, b, i, outlines[b])[1] for b in bodies for i in idx])
-    gp = np.array(list(model["ground_points"].values()) or [[0.0, 0.0]], float)
+    gp = np.array(list(model["ground"]["points"].values()) or [[0.0, 0.0]], float)
     allx, ally = np.concatenate([allx, gp[:, 0]]), np.concatenate([ally, gp[:, 1]])
     span = max(np.ptp(allx), np.ptp(ally), 1e-3)
     pad = 0.12 * span
@@ -92,7 +92,7 @@ def animate(results_file, out, frames: int = 120, fps: int = 20, last_revs: floa
     ax.plot(gp[:, 0], gp[:, 1], "k^", ms=10, label="ground")
     blocks = []
     for body, p_j, p_i, axis in guides:
-        o = np.array(model["ground_points"][p_i], float)
+        o = np.array(model["ground"]["points"][p_i], float)
         d = np.array(axis, float) / np.hypot(*axis)
         ends = np.array([o + d * (v - o @ d) for v in (allx.min() - pad, allx.max() + pad)])
         ax.plot(ends[:, 0], ends[:, 1], color="0.45", lw=1.2, ls="-.", zorder=1)

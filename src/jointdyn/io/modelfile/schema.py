@@ -27,12 +27,11 @@ from jointdyn.forces.contact_laws import CONTACT_LAWS
 from jointdyn.forces.elements import FORCE_ELEMENTS
 from jointdyn.forces.friction_laws import FRICTION_LAWS
 from jointdyn.integrators import SOLVERS
+from jointdyn.multibody.codec import LAW_FIELDS
 from jointdyn.multibody.model import Body, Model
 from jointdyn.simulation.simulate import SimConfig
 
 TOP_LEVEL = ("model", "ground", "bodies", "joints", "elements", "simulation")
-#: fields that hold a law *instance*: written as ``{ law = "<name>", ...fields }``
-LAW_FIELDS = {"contact": CONTACT_LAWS, "friction": FRICTION_LAWS, "film": FILM_MODELS}
 #: string fields that name an entry of a registry
 NAME_FIELDS = {"film": FILM_MODELS, "solver": {"auto": None, **SOLVERS}}
 _REQUIRED = object()
