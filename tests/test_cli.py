@@ -34,7 +34,7 @@ def test_run_perfect_writes_files(tmp_path):
     summary = json.loads((out / "summary.json").read_text())
     assert summary["peak_moment"] == pytest.approx(M.max(), rel=1e-9)  # CSV keeps 10 digits
     ds = xr.load_dataset(out / "results.nc", engine="h5netcdf")
-    assert json.loads(ds.attrs["model"])["name"] == "slider-crank (perfect)"
+    assert json.loads(ds.attrs["model"])["model"]["name"] == "slider-crank (perfect)"  # model-file layout
     assert ds["lam"].sizes["row"] == 9
 
 

@@ -175,6 +175,9 @@ def test_results_save_load_gives_the_same_system(item, tmp_path, monkeypatch):
         assert post.max_penetration(back, name) == post.max_penetration(res, name)
         for k, v in post.film_states(res, name).items():
             np.testing.assert_array_equal(post.film_states(back, name)[k], v)
+        if isinstance(back.system.elements[back.system.element_names.index(name)], JournalBearing):
+            for k, v in post.film_outputs(res, name).items():  # from the stored film table
+                np.testing.assert_array_equal(post.film_outputs(back, name)[k], v)
 
 
 def test_results_of_the_previous_layout_still_load(tmp_path):

@@ -100,10 +100,11 @@ def film_outputs(res, element: str) -> dict:
     from jointdyn.film.finite import finite_outputs
     from jointdyn.film.models import FILM_WIDTH, film_model, film_name
     from jointdyn.film.pi_outputs import long_pi_outputs, short_pi_outputs
-    from jointdyn.forces.journal import JournalBearing
+    from jointdyn.forces.journal import TABLE
 
-    el = res.system.elements[res._element(element)[0]]
-    if not isinstance(el, JournalBearing):
+    k = res._element(element)[0]
+    el = res.system.elements[k]
+    if getattr(el, "film", None) is None:
         raise ValueError(f"element {element!r} is a {type(el).__name__}, not a lubricated JournalBearing")
     name, fm = film_name(el.film), film_model(el.film)
     st = film_states(res, element)
@@ -111,7 +112,7 @@ def film_outputs(res, element: str) -> dict:
     c = el.bearing_radius - el.journal_radius  # the clearance [m]
     p = np.zeros(FILM_WIDTH)
     p[: len(fm.PARAMS)] = params_of(fm)
-    tab = fm.table(L, R) if hasattr(fm, "table") else None
+    tab = res.system.tables[res.system.fint[k, TABLE]] if hasattr(fm, "table") else None  # the run's table
     nt = len(res.t)
     out = {k: np.full(nt, np.nan) for k in ("p_max", "theta_pmax", "theta_end", "side_flow")}
     for i in range(nt):
