@@ -151,8 +151,13 @@ def animate(results_file, out, frames: int = 120, fps: int = 20, last_revs: floa
         writer = FFMpegWriter(fps=fps)
     else:
         writer = PillowWriter(fps=fps)
-    anim.save(out, writer=writer)
-    plt.close(fig)
+    from jointdyn.core.atomic import replacing
+
+    try:
+        with replacing(out) as tmp:  # the temporary name keeps the suffix
+            anim.save(tmp, writer=writer)
+    finally:
+        plt.close(fig)
     return out
 
 
@@ -167,5 +172,8 @@ def frame_png(results_file, out, fraction: float = 0.5, **kw) -> Path:
         gif = animate(results_file, Path(tmp) / "a.gif", frames=kw.pop("frames", 21), **kw)
         im = Image.open(gif)
         im.seek(int(round(fraction * (im.n_frames - 1))))
-        im.convert("RGB").save(out)
+        from jointdyn.core.atomic import replacing
+
+        with replacing(Path(out)) as t:
+            im.convert("RGB").save(t, format=(Path(out).suffix[1:] or "png").upper().replace("JPG", "JPEG"))
     return Path(out)
