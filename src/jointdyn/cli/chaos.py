@@ -116,8 +116,8 @@ def bifurcation(
     try:
         if resume and overwrite:
             raise ValueError("--resume and --overwrite exclude each other")
-        OutputDir(out, "bifurcation", {}).check(overwrite, resume)
         sp = load_bifurcation(spec)
+        OutputDir(out, "bifurcation", {}).check(overwrite, resume)
         with _progress("bifurcation") as prog:
             task = prog.add_task(f"{len(sp.values)} values of {sp.parameter}", total=len(sp.values))
             ds = run_bifurcation(
@@ -164,7 +164,6 @@ def lyapunov(
     from jointdyn.studies.lyapunov import plot_running, system_lyapunov
 
     try:
-        OutputDir(out, "lyapunov", {}).check(overwrite)
         if model.endswith(".toml"):
             from jointdyn.io.modelfile import load_model
 
@@ -188,6 +187,7 @@ def lyapunov(
             }
         else:
             raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
+        OutputDir(out, "lyapunov", {}).check(overwrite)  # inputs first, then the output directory
         res = system_lyapunov(
             system,
             d0=d0,

@@ -349,6 +349,10 @@ class OutputDir:
             self.journal(name)
         self.record(name)
 
+    def adopt(self, name: str) -> None:
+        """Let this run replace ``name`` (a resumed sweep's ``spec.json``, checked equal)."""
+        self._owned.add(name)
+
     def journal(self, name: str) -> None:
         """Record in the lock file that ``name`` is being written (known to a later
         ``--overwrite`` even if this process is killed)."""

@@ -197,6 +197,7 @@ def run_sweep(
         od = OutputDir(out, "sweep", rec).claim(overwrite=overwrite, resume=resume)
         try:
             _check_owner(out, rec, resume)
+            od.adopt("spec.json")
         except BaseException:
             od.release()
             raise
