@@ -153,6 +153,9 @@ def test_second_writer_is_refused_and_rerun_needs_overwrite(tmp_path):
         p.communicate(timeout=60)
     r = runner.invoke(app, ["run", "slider-crank", "--revs", "0.05", "--out", str(out)])
     assert r.exit_code == 2 and "--overwrite" in r.output  # a finished directory is not reused silently
+    r = runner.invoke(app, ["run", "slider-crank", "--revs", "0.05", "--out", str(out), "--overwrite"])
+    assert r.exit_code == 0, r.output
+    assert not (out / "orbit.png").exists()  # the lubricated run's (listed) figure: no stale file left
     # ownership is the manifest's list only (tests/test_output_safety.py): a file named like one
     # this command writes but not listed is refused, never replaced; any other is kept and named
     (out / "orbit.png").write_bytes(b"a figure jointdyn did not write")

@@ -25,7 +25,7 @@ from typer.testing import CliRunner
 from jointdyn.cli import app
 from jointdyn.core import atomic
 from jointdyn.core.atomic import OutputError
-from jointdyn.io import rundir
+from jointdyn.io import derived
 from jointdyn.io.rundir import LOCK, MANIFEST, KeptFiles, OutputDir, read_manifest
 
 runner = CliRunner()
@@ -305,7 +305,7 @@ def test_derived_outputs_join_the_manifest_under_the_lock(run_dir):
     assert m["status"] == "complete" and m["kind"] == "run" and not (run_dir / LOCK).exists()
     for name, meta in m["files"].items():
         assert atomic.sha256(run_dir / name) == meta["sha256"], name
-    with rundir.derived(run_dir, "poincare"):  # a writer holds the directory
+    with derived.derived(run_dir, "poincare"):  # a writer holds the directory
         r = runner.invoke(app, ["poincare", str(run_dir), "--transient-revs", "0"])
         assert r.exit_code == 2 and "another jointdyn process" in r.output, r.output
 

@@ -15,7 +15,8 @@ from rich.console import Console
 from rich.table import Table
 
 from jointdyn.cli.common import _one_line_errors, _progress, app
-from jointdyn.io.rundir import OutputDir, derived, output_file, status_of
+from jointdyn.io.derived import derived, output_file, status_of
+from jointdyn.io.rundir import OutputDir
 
 console = Console()
 

@@ -55,7 +55,7 @@ def _save(fig, target: Path) -> None:
     its own elsewhere (:func:`jointdyn.io.rundir.output_file`)."""
     import matplotlib.pyplot as plt
 
-    from jointdyn.io.rundir import output_file
+    from jointdyn.io.derived import output_file
 
     try:
         with output_file(target) as tmp:
@@ -206,7 +206,7 @@ def animate_cmd(
             raise ValueError(f"--out {out}: must end in .gif or .mp4")
         f = _results_file(directory)
         _load(f, "a jointdyn results file", ("q", "lam", "element_outputs"))
-        from jointdyn.io.rundir import output_file
+        from jointdyn.io.derived import output_file
 
         with output_file(out) as tmp:  # the temporary name keeps the suffix (the writer's choice)
             animate(f, tmp, frames=frames)

@@ -15,8 +15,9 @@ Rules (``docs/user-guide/cli.md``):
   records the owner's pid and, before each file is renamed into place, that file's name (so a
   killed run's files are known to the next ``--overwrite``). It is removed when the writer ends;
   a lock left by a dead process is taken over.
-* Derived outputs (:func:`derived`: ``poincare``, ``spectrum``, ``plot``, ``plot-sweep``,
-  ``animate`` into a directory with a manifest) are added to that manifest under the lock.
+* Derived outputs (:func:`jointdyn.io.derived.derived`: ``poincare``, ``spectrum``, ``plot``,
+  ``plot-sweep``, ``animate`` into a directory with a manifest) are added to that manifest under
+  the lock.
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ from pathlib import Path, PurePosixPath
 from jointdyn.core import atomic
 from jointdyn.core.atomic import OutputError
 
-__all__ = ["LOCK", "MANIFEST", "OutputDir", "OutputError", "check_path", "derived", "read_manifest"]
+__all__ = ["LOCK", "MANIFEST", "OutputDir", "OutputError", "check_path", "read_manifest"]
 
 MANIFEST = "manifest.json"
 LOCK = ".jointdyn.lock"
@@ -204,6 +205,12 @@ class OutputDir:
             raise
         return self
 
+    def extend(self) -> None:
+        """Lock a directory that has a manifest to add files to it (derived outputs)."""
+        self._lock()
+        self._base = read_manifest(self.path) or {"kind": self.kind, "status": "complete", "files": {}}
+        self._owned = set(self._base.get("files", {}))
+
     def check(self, overwrite: bool = False, resume: bool = False) -> None:
         """Refuse, without touching anything, a non-empty directory when neither flag is given."""
         check_path(self.path, self.option)
@@ -278,8 +285,9 @@ class OutputDir:
         os.pwrite(self._fd, "".join(lines).encode(), 0)
 
     def _clear(self, overwrite: bool, resume: bool, expect) -> None:
-        for t in atomic.stale_temps(self.path):
-            t.unlink(missing_ok=True)
+        subdirs = [p for p in self.path.iterdir() if p.is_dir() and not p.is_symlink()]
+        for t in [t for d in (self.path, *subdirs) for t in atomic.stale_temps(d)]:
+            t.unlink(missing_ok=True)  # temporaries of dead jointdyn processes
         old = read_manifest(self.path)
         listed = set((old or {}).get("files", {})) | set(self._journal)
         entries = _entries(self.path)
@@ -380,7 +388,7 @@ class OutputDir:
             "files": self.files,
             **extra,
         }
-        if self._base is not None:  # derived outputs added to an existing manifest
+        if self._base is not None:  # derived outputs added to an existing manifest (io.derived)
             manifest = self._base | {"files": self._base.get("files", {}) | self.files, "updated": _now()}
         try:
             if self._fd is not None:
@@ -402,53 +410,3 @@ class OutputDir:
             with contextlib.suppress(OSError):
                 os.close(self._fd)
             self._fd = None
-
-
-def status_of(err: BaseException) -> str:
-    """The manifest status of a command stopped by ``err``."""
-    from jointdyn.errors import Interrupted
-
-    return "interrupted" if isinstance(err, (Interrupted, KeyboardInterrupt)) else "failed"
-
-
-@contextlib.contextmanager
-def derived(directory, kind: str, option: str = "--out"):
-    """Claim ``directory`` for derived outputs: a directory with a manifest is locked and the
-    files written through the yielded :class:`OutputDir` are added to its manifest (replacing
-    only files it lists); a new or empty directory becomes one of kind ``kind``; a non-empty
-    directory without a manifest is refused."""
-    directory = Path(directory)
-    base = read_manifest(directory) if directory.is_dir() else None
-    od = OutputDir(directory, kind, {}, option)
-    if base is None:
-        od.claim()
-    else:
-        od._lock()
-        base = read_manifest(directory) or base  # as it is under the lock
-        od._base = base
-        od._owned = set(base.get("files", {}))
-    try:
-        yield od
-    except BaseException as err:
-        if base is None:
-            od.finish(status_of(err), str(err))
-        elif od.files:
-            od.finish()
-        else:
-            od.release()
-        raise
-    od.finish("complete")
-
-
-@contextlib.contextmanager
-def output_file(path, kind: str = "plot", option: str = "--out"):
-    """A single output file: inside a directory with a manifest it is a derived output of that
-    directory (:func:`derived`); anywhere else it is written safely on its own (a character
-    device such as ``/dev/null`` is written into)."""
-    path = Path(path)
-    if str(path) not in atomic.STREAMS and read_manifest(path.parent) is not None:
-        with derived(path.parent, kind, option) as od, od.write(path.name) as tmp:
-            yield tmp
-    else:
-        with atomic.replacing(path, devices=True, option=option) as tmp:
-            yield tmp

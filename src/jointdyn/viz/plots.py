@@ -321,7 +321,7 @@ def plot_run(directory, what: str = "moment", out=None, overlay=(), **kw) -> Pat
         plt.close(fig)
         raise ValueError(f"out = {str(target)!r}: would overwrite the run's own figure; choose another name")
     fig.tight_layout()
-    from jointdyn.io.rundir import output_file
+    from jointdyn.io.derived import output_file
 
     try:
         with output_file(target) as tmp:  # in a run directory: added to its manifest
