@@ -424,3 +424,30 @@ def test_a_fifo_as_input_is_refused_not_waited_on(tmp_path, command, no_block):
     assert r.exit_code == 2 and "is a FIFO, not a regular file" in r.output, r.output
     one_line(r.output)
     assert not (tmp_path / "o").exists()
+
+
+def test_bifurcation_resume_and_overwrite_follow_its_manifest(tmp_path):
+    """The diagram's directory lists its sweep's files and its figure; ``--resume`` keeps them
+    listed, ``--overwrite`` removes exactly them (the user's file stays)."""
+    spec, out = tmp_path / "b.toml", tmp_path / "bif"
+    spec.write_text(
+        '[base]\njoint = "dry"\nrtol = 1e-6\natol = 1e-9\n[bifurcation]\nparameter = "clearance"\n'
+        "values = [2e-4]\ntransient_revs = 1\nrecord_revs = 1\n"
+    )
+    args = ["bifurcation", str(spec), "--out", str(out), "--workers", "1"]
+    for extra in ([], ["--resume"]):
+        r = runner.invoke(app, [*args, *extra])
+        assert r.exit_code == 0, r.output
+        m = read_manifest(out)
+        assert m["kind"] == "bifurcation" and m["status"] == "complete"
+        assert {
+            "bifurcation.nc",
+            "bifurcation.png",
+            "sweep/manifest.json",
+            "sweep/cases/case_00000.json",
+        } <= set(m["files"])
+    (out / "notes.txt").write_text("mine")
+    r = runner.invoke(app, [*args, "--overwrite"])
+    assert r.exit_code == 0 and "notes.txt" in r.output, r.output
+    assert (out / "notes.txt").read_text() == "mine" and not (out / LOCK).exists()
+    assert not [p for p in out.rglob("*") if p.name == LOCK or atomic.is_temp(p)]

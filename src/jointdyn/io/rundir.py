@@ -186,6 +186,7 @@ class OutputDir:
         self._owned: set[str] = set()  # names of earlier runs this one may replace
         self._journal: list[str] = []  # names a killed earlier run recorded, still in the lock file
         self._base: dict | None = None  # the manifest extended by derived outputs
+        self._carried: list[str] = []  # files of the run a resumed one continues
 
     # -- claiming ---------------------------------------------------------------------------
     def claim(self, overwrite: bool = False, resume: bool = False, expect=()) -> OutputDir:
@@ -295,6 +296,7 @@ class OutputDir:
             return
         if resume and self.kind in ("sweep", "bifurcation"):
             self._owned = listed | {MANIFEST}
+            self._carried = sorted(listed)  # still listed at the end if still there
             return  # the sweep checks the spec itself (ownership) and keeps finished cases
         if not overwrite:
             self.check(False, False)
@@ -376,6 +378,10 @@ class OutputDir:
 
     def finish(self, status: str = "complete", reason: str = "", **extra) -> None:
         """Write ``manifest.json`` (last) and release the lock."""
+        for name in self._carried:  # a resumed directory's earlier files it did not rewrite
+            p = _inside(self.path, name)
+            if name not in self.files and p is not None and p.is_file() and not p.is_symlink():
+                self.record(name)
         manifest = {
             "kind": self.kind,
             "status": status,
