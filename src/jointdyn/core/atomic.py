@@ -74,8 +74,12 @@ def stale_temps(directory) -> list[Path]:
 
 def file_mode() -> int:
     """The mode a newly created file gets: ``0666`` without the process's umask bits."""
-    mask = os.umask(0o022)
-    os.umask(mask)
+    try:  # Linux: read without changing it (os.umask would, briefly, for every thread)
+        with open("/proc/self/status", encoding="ascii") as f:
+            mask = next(int(ln.split()[1], 8) for ln in f if ln.startswith("Umask:"))
+    except (OSError, StopIteration, ValueError, IndexError):
+        mask = os.umask(0o022)
+        os.umask(mask)
     return 0o666 & ~mask
 
 
