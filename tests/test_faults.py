@@ -153,14 +153,19 @@ def test_second_writer_is_refused_and_rerun_needs_overwrite(tmp_path):
         p.communicate(timeout=60)
     r = runner.invoke(app, ["run", "slider-crank", "--revs", "0.05", "--out", str(out)])
     assert r.exit_code == 2 and "--overwrite" in r.output  # a finished directory is not reused silently
-    (out / "orbit.png").write_bytes(b"stale figure of an earlier lubricated run")
     r = runner.invoke(app, ["run", "slider-crank", "--revs", "0.05", "--out", str(out), "--overwrite"])
     assert r.exit_code == 0, r.output
-    assert not (out / "orbit.png").exists()  # stale files never left beside new ones
-    assert complete_files(out)["status"] == "complete"
-    (out / "notes.txt").write_text("mine")
+    assert not (out / "orbit.png").exists()  # the lubricated run's (listed) figure: no stale file left
+    # ownership is the manifest's list only (tests/test_output_safety.py): a file named like one
+    # this command writes but not listed is refused, never replaced; any other is kept and named
+    (out / "orbit.png").write_bytes(b"a figure jointdyn did not write")
     r = runner.invoke(app, ["run", "slider-crank", "--revs", "0.05", "--out", str(out), "--overwrite"])
-    assert r.exit_code == 2 and "notes.txt" in r.output and (out / "notes.txt").exists()  # never deleted
+    assert r.exit_code == 2 and "orbit.png" in r.output and (out / "orbit.png").exists()
+    (out / "orbit.png").rename(out / "notes.png")
+    r = runner.invoke(app, ["run", "slider-crank", "--revs", "0.05", "--out", str(out), "--overwrite"])
+    assert r.exit_code == 0 and "notes.png" in r.output, r.output
+    assert (out / "notes.png").read_bytes() == b"a figure jointdyn did not write"  # never deleted
+    assert complete_files(out)["status"] == "complete" and not (out / LOCK).exists()
 
 
 SWEEP = '[base]\nmodel = "slider-crank"\njoint = "perfect"\nrevs = 0.1\nsamples_per_rev = 90\n[grid]\nspeed = {}\n'

@@ -171,5 +171,8 @@ def plot_validation(published_path: str | Path, out_png: str | Path, butenschoen
     a2.grid(True, alpha=0.3)
     a3.grid(True, alpha=0.3)
     fig.tight_layout()
-    fig.savefig(out_png, dpi=110)
+    from jointdyn.core.atomic import replacing
+
+    with replacing(out_png) as tmp:
+        fig.savefig(tmp, dpi=110, format="png")
     plt.close(fig)

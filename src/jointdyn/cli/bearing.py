@@ -73,7 +73,11 @@ def bearing_table_cmd(
     if out:
         from jointdyn.core.atomic import write_text
 
-        write_text(out, buf.getvalue())
+        try:  # a character device (/dev/null, /dev/stdout) is written into, never replaced
+            write_text(out, buf.getvalue(), devices=True)
+        except (ValueError, OSError) as err:
+            console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
+            raise typer.Exit(2) from None
     else:
         sys.stdout.write(buf.getvalue())
     if op is not None:

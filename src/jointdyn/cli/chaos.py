@@ -4,6 +4,7 @@ Registered on the application of :mod:`jointdyn.cli.common` when imported."""
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import json
 import math
@@ -14,8 +15,23 @@ from rich.console import Console
 from rich.table import Table
 
 from jointdyn.cli.common import _one_line_errors, _progress, app
+from jointdyn.io.derived import derived, output_file, status_of
+from jointdyn.io.rundir import OutputDir
 
 console = Console()
+
+
+@contextlib.contextmanager
+def _claimed(out: Path, kind: str, spec: dict, overwrite: bool):
+    """``out`` claimed like a run directory (lock, atomic files, manifest last, ``--overwrite``
+    by the manifest); the manifest says ``complete`` or why not."""
+    od = OutputDir(out, kind, spec).claim(overwrite)
+    try:
+        yield od
+    except BaseException as err:
+        od.finish(status_of(err), str(err))
+        raise
+    od.finish("complete")
 
 
 def _fail(err: Exception):
@@ -71,14 +87,15 @@ def poincare(
     except (ValueError, KeyError, TypeError) as err:
         _fail(err)
     out = Path(out or directory)
-    out.mkdir(parents=True, exist_ok=True)
-    with open(out / "poincare.csv", "w") as f:
-        names = list(sec.values)
-        f.write(",".join(["t", *names]) + "\n")
-        for i in range(sec.t.size):
-            f.write(",".join(f"{v:.10g}" for v in [sec.t[i], *(sec.values[k][i] for k in names)]) + "\n")
     where = f"plane {plane}" if plane else f"crank angle {angle:g}°"
-    plot_sections({res.system.name: sec}, out / "poincare.png", f"section at {where}")
+    with derived(out, "poincare") as od:  # in a run directory: added to its manifest
+        with od.write("poincare.csv") as tmp, open(tmp, "w") as f:
+            names = list(sec.values)
+            f.write(",".join(["t", *names]) + "\n")
+            for i in range(sec.t.size):
+                f.write(",".join(f"{v:.10g}" for v in [sec.t[i], *(sec.values[k][i] for k in names)]) + "\n")
+        with od.write("poincare.png") as tmp:
+            plot_sections({res.system.name: sec}, tmp, f"section at {where}")
     console.print(f"{sec.t.size} section points; wrote {out}/poincare.csv, poincare.png")
 
 
@@ -89,6 +106,7 @@ def bifurcation(
     scheduler: str = typer.Option(None, help="Dask scheduler tcp://HOST:PORT (default: local processes)"),
     variable: str = typer.Option("ex_over_c", help="section variable drawn against the parameter"),
     resume: bool = typer.Option(False, help="keep the finished values of the same diagram in --out/sweep"),
+    overwrite: bool = typer.Option(False, help="replace jointdyn's files of a previous diagram in --out"),
 ):
     """Bifurcation diagram over one parameter, run as a sweep (DIR/sweep: one case file per
     value): writes bifurcation.nc and bifurcation.png."""
@@ -97,7 +115,10 @@ def bifurcation(
     if variable not in VARIABLES:
         _fail(ValueError(f"--variable {variable!r}: valid: {list(VARIABLES)}"))
     try:
+        if resume and overwrite:
+            raise ValueError("--resume and --overwrite exclude each other")
         sp = load_bifurcation(spec)
+        OutputDir(out, "bifurcation", {}).check(overwrite, resume)
         with _progress("bifurcation") as prog:
             task = prog.add_task(f"{len(sp.values)} values of {sp.parameter}", total=len(sp.values))
             ds = run_bifurcation(
@@ -107,10 +128,12 @@ def bifurcation(
                 scheduler=scheduler,
                 progress=lambda d, n: prog.update(task, completed=d),
                 resume=resume,
+                overwrite=overwrite,
             )
+        with output_file(Path(out) / "bifurcation.png") as tmp:  # added to the diagram's manifest
+            plot_bifurcation(ds, tmp, variable)
     except ValueError as err:
         _fail(err)
-    plot_bifurcation(ds, Path(out) / "bifurcation.png", variable)
     failed = int((ds["error"] != "").sum())
     console.print(f"wrote {out}/bifurcation.nc, bifurcation.png ({len(sp.values)} values, {failed} failed)")
 
@@ -134,6 +157,7 @@ def lyapunov(
     seed: int = typer.Option(1, help="seed of the initial deviation direction"),
     set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
     out: Path = typer.Option(Path("out/lyapunov"), help="output directory"),
+    overwrite: bool = typer.Option(False, help="replace jointdyn's files of a previous result in --out"),
 ):
     """Largest Lyapunov exponent (Benettin two-trajectory renormalisation): writes summary.json
     (largest_lyapunov_exponent [1/s] and its standard error), lyapunov.csv and lyapunov.png."""
@@ -164,6 +188,7 @@ def lyapunov(
             }
         else:
             raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
+        OutputDir(out, "lyapunov", {}).check(overwrite)  # inputs first, then the output directory
         res = system_lyapunov(
             system,
             d0=d0,
@@ -177,14 +202,16 @@ def lyapunov(
         )
     except (ModelError, ValueError, SimulationError, FloatingPointError) as err:
         _fail(err)
-    out.mkdir(parents=True, exist_ok=True)
     summ = {"model": system.name, **res.summary()}
-    (out / "summary.json").write_text(json.dumps(summ, indent=2))
-    with open(out / "lyapunov.csv", "w") as f:
-        f.write("t,segment_rate,running_estimate\n")
-        for row in zip(res.times, res.segment_rates, res.running):
-            f.write(",".join(f"{v:.10g}" for v in row) + "\n")
-    plot_running(res, out / "lyapunov.png", f"{system.name}: largest Lyapunov exponent")
+    with _claimed(out, "lyapunov", {"model": model, "set": list(set_)}, overwrite) as od:
+        with od.write("summary.json") as tmp:
+            tmp.write_text(json.dumps(summ, indent=2) + "\n", encoding="utf-8")
+        with od.write("lyapunov.csv") as tmp, open(tmp, "w") as f:
+            f.write("t,segment_rate,running_estimate\n")
+            for row in zip(res.times, res.segment_rates, res.running):
+                f.write(",".join(f"{v:.10g}" for v in row) + "\n")
+        with od.write("lyapunov.png") as tmp:
+            plot_running(res, tmp, f"{system.name}: largest Lyapunov exponent")
     console.print(
         f"{system.name}: λ₁ = {res.exponent:.6g} ± {res.stderr:.2g} 1/s (1 s.e., {res.batches} batches); "
         f"wrote {out}/summary.json, lyapunov.csv, lyapunov.png"
@@ -208,13 +235,14 @@ def spectrum(
     except (ValueError, KeyError) as err:
         _fail(err)
     out = Path(out or directory)
-    out.mkdir(parents=True, exist_ok=True)
     names = [k for k in UNITS if k in sp]
-    with open(out / "spectrum.csv", "w") as f:
-        f.write(",".join(["harmonic", *names]) + "\n")
-        for i in range(sp["harmonic"].size):
-            f.write(",".join(f"{v:.10g}" for v in [sp["harmonic"][i], *(sp[k][i] for k in names)]) + "\n")
-    plot_spectra(sp, out / "spectrum.png", max_harmonic, res.system.name)
+    with derived(out, "spectrum") as od:  # in a run directory: added to its manifest
+        with od.write("spectrum.csv") as tmp, open(tmp, "w") as f:
+            f.write(",".join(["harmonic", *names]) + "\n")
+            for i in range(sp["harmonic"].size):
+                f.write(",".join(f"{v:.10g}" for v in [sp["harmonic"][i], *(sp[k][i] for k in names)]) + "\n")
+        with od.write("spectrum.png") as tmp:
+            plot_spectra(sp, tmp, max_harmonic, res.system.name)
     console.print(f"{sp['revs']} revolutions; wrote {out}/spectrum.csv, spectrum.png")
 
 
@@ -226,19 +254,22 @@ def ensemble(
     transient_revs: int = typer.Option(10, help="revolutions discarded [rev]"),
     workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
     out: Path = typer.Option(Path("out/ensemble"), help="output directory"),
+    overwrite: bool = typer.Option(False, help="replace jointdyn's files of a previous ensemble in --out"),
 ):
     """Distributions of per-revolution quantities of the slider-crank (median, 5–95 %) with a
     convergence check across tolerances: writes ensemble.json."""
     from jointdyn.studies.ensemble import ensemble_table, slider_crank_ensemble
 
     try:
+        OutputDir(out, "ensemble", {}).check(overwrite)
         r = slider_crank_ensemble(
             joint, tuple(float(v) for v in rtols.split(",")), replicas, revs, transient_revs, workers=workers
         )
     except ValueError as err:  # SimulationError, Interrupted: the CLI wrapper (exit 1, 130/143)
         _fail(err)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "ensemble.json").write_text(json.dumps(r, indent=2))
+    spec = {"joint": joint, "rtols": rtols, "replicas": replicas, "revs": revs, "transient": transient_revs}
+    with _claimed(out, "ensemble", spec, overwrite) as od, od.write("ensemble.json") as tmp:
+        tmp.write_text(json.dumps(r, indent=2) + "\n", encoding="utf-8")
     tab = Table(title=f"slider-crank ({joint}), revolutions {transient_revs}–{revs}, rtol {rtols}")
     for c in ("quantity", "unit", "median", "5 %", "95 %", "n", "shift", "converged"):
         tab.add_column(c)

@@ -25,6 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
+from jointdyn.core import atomic
+
 ROOT = Path(__file__).resolve().parents[3]
 README = ROOT / "README.md"
 #: documents with generated blocks: the README must have every block, docs pages may use some
@@ -246,19 +248,18 @@ def generate(
 ) -> dict[str, str]:
     """Recompute everything, write the figures and the blocks of the README and the docs pages;
     returns the blocks."""
-    import shutil
 
     with tempfile.TemporaryDirectory() as tmp:
         runs, ens = reproduce_runs(Path(tmp) / "repro")
         figures.mkdir(parents=True, exist_ok=True)
         for f in REPRO_FIGURES:
-            shutil.copyfile(Path(tmp) / "repro" / f, figures / f)
+            atomic.write_bytes(figures / f, (Path(tmp) / "repro" / f).read_bytes())
         ds = sweep_dataset(Path(tmp) / "sweep", workers=workers)
         sweep_figures(ds, figures)
     new = _blocks_now(runs, ds, ens)
     for doc in (readme, *pages):
         if doc.exists():
-            doc.write_text(replace_blocks(doc.read_text(encoding="utf-8"), new), encoding="utf-8")
+            atomic.write_text(doc, replace_blocks(doc.read_text(encoding="utf-8"), new))
     return new
 
 
@@ -274,7 +275,8 @@ def sweep_figures(ds, figures: Path) -> None:
         fig, ax = plt.subplots(figsize=(6.2, 4.8))
         plots.sweep_metric(ds[metric], ax=ax)
         fig.tight_layout()
-        fig.savefig(figures / f"sweep_{metric}.png", dpi=130)
+        with atomic.replacing(figures / f"sweep_{metric}.png") as tmp:
+            fig.savefig(tmp, dpi=130, format="png")
         plt.close(fig)
 
 

@@ -14,7 +14,6 @@ from rich.markup import escape
 from rich.table import Table
 
 from jointdyn.cli.common import _one_line_errors, app, console
-from jointdyn.core import atomic
 from jointdyn.film.models import FILM_MODELS
 
 PLOTS = ("moment", "orbit", "film", "contact", "energy")
@@ -52,11 +51,17 @@ def _status_warning(directory: Path) -> None:
 
 
 def _save(fig, target: Path) -> None:
+    """A figure into ``target``: added to the manifest of a run or sweep directory, written on
+    its own elsewhere (:func:`jointdyn.io.rundir.output_file`)."""
     import matplotlib.pyplot as plt
 
-    with atomic.replacing(target) as tmp:
-        fig.savefig(tmp, dpi=120, format="png")
-    plt.close(fig)
+    from jointdyn.io.derived import output_file
+
+    try:
+        with output_file(target) as tmp:
+            fig.savefig(tmp, dpi=120, format="png")
+    finally:
+        plt.close(fig)
 
 
 def _results_file(directory: Path) -> Path:
@@ -205,13 +210,10 @@ def animate_cmd(
             raise ValueError(f"--out {out}: must end in .gif or .mp4")
         f = _results_file(directory)
         _load(f, "a jointdyn results file", ("q", "lam", "element_outputs"))
-        with atomic.replacing(out) as tmp:
-            target = tmp.with_name(tmp.name + out.suffix)  # writers pick the format by suffix
-            try:
-                animate(f, target, frames=frames)
-                target.replace(tmp)
-            finally:
-                target.unlink(missing_ok=True)
+        from jointdyn.io.derived import output_file
+
+        with output_file(out) as tmp:  # the temporary name keeps the suffix (the writer's choice)
+            animate(f, tmp, frames=frames)
     console.print(f"wrote {escape(str(out))}")
 
 

@@ -175,16 +175,17 @@ def reproduce(
     out: Path = typer.Option(Path("out/alshaer2005"), help="output directory"),
     quick: bool = typer.Option(False, help="1 revolution instead of 4 (CI smoke run)"),
     beyond: bool = typer.Option(True, help="also run the beyond-the-paper cases"),
+    overwrite: bool = typer.Option(False, help="replace the files of a previous reproduction in --out"),
 ):
     """Run the paper's comparison (perfect, dry, Ott, π-film) and write figures + report.html;
     the full run also reports the dry case as a distribution (ensemble_dry.md)."""
-    from jointdyn.io.rundir import check_path
+    from jointdyn.io.rundir import OutputDir
     from jointdyn.studies.reproduce import BEYOND_CASES, PAPER_CASES, reproduce_alshaer2005, summary_markdown
 
     with _one_line_errors():
         if paper != "alshaer2005":
             raise ValueError(f"PAPER {paper!r}: unknown; valid: alshaer2005")
-        check_path(out)
+        OutputDir(out, "reproduce", {}).check(overwrite)
         cases = PAPER_CASES + (BEYOND_CASES if beyond else ())
         with _progress("reproduce") as prog:
             names = [c.name for c in cases] + ([] if quick else ["dry ensemble"])
@@ -194,6 +195,7 @@ def reproduce(
                 quick=quick,
                 beyond=beyond,
                 progress=lambda name, f: prog.update(tasks[name], completed=f),
+                overwrite=overwrite,
             )
     console.print(escape(summary_markdown(runs)))
     if (Path(out) / "ensemble_dry.md").exists():  # the dry case as a distribution (full runs)

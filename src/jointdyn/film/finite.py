@@ -15,11 +15,12 @@ from __future__ import annotations
 
 import hashlib
 import math
-import os
 from pathlib import Path
 
 import numpy as np
 from numba import njit
+
+from jointdyn.core import atomic
 
 XI_MAX = 0.95  # table range; beyond it the force is extrapolated with the (1−ξ²)^{-3/2} scaling
 
@@ -208,10 +209,9 @@ def build_table(
     if cache:
         try:
             base.mkdir(parents=True, exist_ok=True)
-            tmp = base / f"{key}.{os.getpid()}.npy"
-            np.save(tmp, tab)
-            os.replace(tmp, f)
-        except OSError:
+            with atomic.replacing(f) as tmp, open(tmp, "wb") as fh:
+                np.save(fh, tab)
+        except (OSError, ValueError):
             pass
     return tab
 

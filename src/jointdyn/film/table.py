@@ -95,13 +95,14 @@ def film_force_table(src, model, out=None) -> int:
         raise ValueError(f"{src}: is a directory, not a CSV file")
     with contextlib.ExitStack() as stack:
         try:
+            atomic.regular_input(src, "STATES")  # a FIFO would block
             fin = stack.enter_context(open(src, newline="", encoding="utf-8-sig"))  # a BOM is not a name
         except FileNotFoundError:
             raise ValueError(f"{src}: no such file") from None
         if out is None:
             fout = sys.stdout
         else:
-            tmp = stack.enter_context(atomic.replacing(Path(out)))
+            tmp = stack.enter_context(atomic.replacing(Path(out), devices=True))
             fout = stack.enter_context(open(tmp, "w", newline="", encoding="utf-8"))
         reader, writer = csv.reader(fin), csv.writer(fout)
         try:

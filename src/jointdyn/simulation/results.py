@@ -9,14 +9,13 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 from dataclasses import dataclass, field, replace
 from importlib.metadata import version as _pkg_version
 from pathlib import Path
 
 import numpy as np
 
+from jointdyn.core import atomic
 from jointdyn.multibody.model import Model
 from jointdyn.multibody.system import System
 from jointdyn.simulation.saved import load_arrays, load_dataset
@@ -289,17 +288,16 @@ class Results:
 
     # -- files ----------------------------------------------------------------------------------
     def save(self, path) -> None:
-        """Write ``path`` (netCDF4 via h5netcdf, the layout of :meth:`to_dataset`) atomically:
-        into a temporary file in the same directory, renamed over ``path`` when complete. Every
-        variable carries a Fletcher-32 checksum, verified by :meth:`load`."""
+        """Write ``path`` (netCDF4 via h5netcdf, the layout of :meth:`to_dataset`) safely
+        (:func:`jointdyn.core.atomic.replacing`: an exclusive temporary file in the same
+        directory, renamed over ``path`` when complete; a link or special file is refused, a
+        character device such as ``/dev/null`` written into). Every variable carries a
+        Fletcher-32 checksum, verified by :meth:`load`."""
         import h5netcdf
         import h5py
 
-        path = Path(path)
         coords = self._coords()
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent or ".")
-        os.close(fd)
-        try:
+        with atomic.replacing(Path(path), devices=True, option="path") as tmp:
             with h5netcdf.File(tmp, "w") as f:
                 f.dimensions = {"time": len(self.t), **{k: len(v) for k, v in coords.items() if k != "time"}}
                 v = f.create_variable("time", ("time",), float, fletcher32=True)
@@ -318,10 +316,6 @@ class Results:
                     var.attrs["units"] = _VARIABLES[name][1]
                 f.attrs.update(self._provenance())
                 _write_arrays(f.create_group("system"), self.system.arrays())
-            os.replace(tmp, path)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
 
     @classmethod
     def load(cls, path) -> Results:

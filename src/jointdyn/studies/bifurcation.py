@@ -26,6 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
+from jointdyn.core import atomic
 from jointdyn.studies.poincare import VARIABLES, section_arrays  # noqa: F401  (re-exported)
 
 _KEYS = {"parameter", "values", "range", "transient_revs", "record_revs", "section_angle", "samples_per_rev"}
@@ -68,7 +69,7 @@ def load_bifurcation(path) -> BifurcationSpec:
     """Read a diagram file (see the module docstring); unknown keys are errors."""
     path = Path(path)
     try:
-        doc = tomllib.loads(path.read_text())
+        doc = tomllib.loads(atomic.regular_input(path, "diagram file").read_text())
     except tomllib.TOMLDecodeError as err:
         raise ValueError(f"{path}: {err}") from None
     if set(doc) - {"base", "bifurcation", "dask"}:
@@ -136,26 +137,39 @@ def run_bifurcation(
     scheduler: str | None = None,
     progress=None,
     resume: bool = False,
+    overwrite: bool = True,
 ):
     """Run all parameter values through the sweep machinery (:func:`jointdyn.studies.sweep.run_sweep`:
     local processes or a Dask cluster; per-case files in ``out/sweep``; ``resume`` runs only the
     values not finished by an earlier call with the same spec) and write
-    ``out/bifurcation.nc``; returns the xarray Dataset (dims: the parameter, ``rev``)."""
+    ``out/bifurcation.nc``; returns the xarray Dataset (dims: the parameter, ``rev``). ``out`` is
+    an output directory of kind ``bifurcation`` (:mod:`jointdyn.io.rundir`; ``overwrite``, the
+    library default, replaces the files its manifest lists)."""
     import json
 
+    from jointdyn.io.rundir import OutputDir, read_manifest
     from jointdyn.studies.sweep import run_sweep
 
     out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
     sp = sweep_spec(spec)
-    run_sweep(sp, out / "sweep", resume=resume, scheduler=scheduler, workers=workers, progress=progress)
+    od = OutputDir(out, "bifurcation", {"parameter": spec.parameter, "values": list(spec.values)})
+    od.claim(overwrite=overwrite, resume=resume)
+    try:
+        run_sweep(sp, out / "sweep", resume=resume, scheduler=scheduler, workers=workers, progress=progress)
+    except BaseException as err:
+        od.finish("failed", f"{type(err).__name__}: {err}")
+        raise
+    for name in [*(read_manifest(out / "sweep") or {}).get("files", {}), "manifest.json"]:
+        od.record(f"sweep/{name}")  # the sweep's files are the diagram's (removed by --overwrite)
     results = []
     for i in range(len(spec.values)):
         r = json.loads((out / "sweep" / "cases" / f"case_{i:05d}.json").read_text(encoding="utf-8"))
         a = {k.removeprefix("poincare_"): v for k, v in r.get("arrays", {}).items()}
         results.append(a | {k: r[k] for k in ("error", "wall_time_s") if k in r})
     ds = to_dataset(spec, results)
-    ds.to_netcdf(out / "bifurcation.nc", engine="h5netcdf")
+    with od.write("bifurcation.nc") as tmp:
+        ds.to_netcdf(tmp, engine="h5netcdf")
+    od.finish("complete")
     return ds
 
 
@@ -243,5 +257,6 @@ def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> 
     a2.set_ylabel("impacts / rev [-]")
     a2.set_xlabel(f"{p} [{unit}]")
     fig.tight_layout()
-    fig.savefig(path, dpi=130)
+    with atomic.replacing(path) as tmp:
+        fig.savefig(tmp, dpi=130, format="png")
     plt.close(fig)

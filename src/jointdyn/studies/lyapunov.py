@@ -20,6 +20,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from jointdyn.core import atomic
+
 
 @dataclass(frozen=True)
 class LyapunovResult:
@@ -297,5 +299,6 @@ def plot_running(result: LyapunovResult, path, title: str = "") -> None:
     ax.set_title(title)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    with atomic.replacing(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
     plt.close(fig)

@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from jointdyn import post
-from jointdyn.core import interrupts
+from jointdyn.core import atomic, interrupts
 from jointdyn.core.constraints import CONSTRAINTS, AngleDriver
 
 _COORD_UNITS = {"x": "m", "y": "m", "phi": "rad"}
@@ -56,7 +56,7 @@ def write_csv(path, cols: dict[str, np.ndarray], digits: int = 17) -> None:
     """Columns of equal length as CSV (``%.<digits>g``), header row first."""
     arrays = [np.asarray(v, dtype=float) for v in cols.values()]
     fmt = f"%.{digits}g"
-    with open(path, "w", newline="", encoding="utf-8") as f:
+    with atomic.replacing(path) as tmp, open(tmp, "w", newline="", encoding="utf-8") as f:
         w = csv.writer(f)
         w.writerow(list(cols))
         for i in range(len(arrays[0]) if arrays else 0):

@@ -13,6 +13,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from jointdyn.core import atomic
+
 
 def journal_relative_state(res, element: str) -> dict[str, np.ndarray]:
     """ex, ey [m] and ex_dot, ey_dot [m/s] of journal element ``element`` at the output samples,
@@ -168,7 +170,8 @@ def plot_sections(sections: dict, path, title: str = "") -> None:
     if title:
         fig.suptitle(title)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    with atomic.replacing(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
     plt.close(fig)
 
 

@@ -285,6 +285,13 @@ of T21/T163; dry contact Lankarani–Nikravesh (T50–T56).</p>
     return body
 
 
+def expected_names(cases) -> tuple[str, ...]:
+    """The names (patterns) a reproduction of ``cases`` writes besides the fixed ones."""
+    names = [f"{c.name}.csv" for c in cases]
+    names += [f"{f}_{c.name}.png" for c in cases for f in ("moment", "orbit")]
+    return (*names, "moment_overlay.png", "moment_beyond.png", "film_thickness.png", "joint_force.png")
+
+
 def reproduce_alshaer2005(
     out: Path,
     quick: bool = False,
@@ -292,6 +299,7 @@ def reproduce_alshaer2005(
     progress=None,
     revs: float | None = None,
     ensemble: bool | None = None,
+    overwrite: bool = True,
 ) -> dict:
     """Run all cases, write the files; returns {case: (results, columns, summary, Case)}.
 
@@ -299,9 +307,11 @@ def reproduce_alshaer2005(
     ensemble of :mod:`jointdyn.studies.reproduce_ensemble`: ``ensemble_dry.md``/``.json`` and a report
     section (``progress`` is called with the name ``"dry ensemble"`` when it is done).
 
-    ``out`` is claimed as an output directory of kind ``reproduce``: the files of an earlier
-    reproduction there are replaced, foreign files make it refuse; every file is written
-    atomically and ``manifest.json`` last (status ``interrupted``/``failed`` if a case stops)."""
+    ``out`` is claimed as an output directory of kind ``reproduce`` (:mod:`jointdyn.io.rundir`):
+    with ``overwrite`` (the library default; the CLI asks for ``--overwrite``) the files its
+    manifest lists (or a killed reproduction recorded) are replaced, any other file is kept;
+    every file is written atomically and ``manifest.json`` last (status
+    ``interrupted``/``failed`` if a case stops)."""
     from jointdyn.io.rundir import OutputDir
 
     revs = revs if revs is not None else (1.0 if quick else 4.0)
@@ -309,7 +319,7 @@ def reproduce_alshaer2005(
     cases = PAPER_CASES + (BEYOND_CASES if beyond else ())
     meta = {"paper": "alshaer2005", "revs": revs, "cases": [c.name for c in cases], "ensemble": ensemble}
     od = OutputDir(out, "reproduce", meta)
-    od.claim(overwrite=True)
+    od.claim(overwrite=overwrite, expect=expected_names(cases))
     try:
         runs = _reproduce_into(od, cases, revs, progress, ensemble)
     except BaseException as err:
@@ -322,10 +332,9 @@ def reproduce_alshaer2005(
 
 
 def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
-    from jointdyn.core import atomic, interrupts
+    from jointdyn.core import interrupts
     from jointdyn.models import slider_crank as sc
 
-    out = od.path
     runs = {}
     for case in cases:
         cb = (lambda f, c=case: progress(c.name, f)) if progress else None
@@ -334,8 +343,8 @@ def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
 
     def put(name: str, data: bytes) -> None:
         interrupts.check()  # Ctrl-C while the report is written stops it (status interrupted)
-        atomic.write_bytes(out / name, data)
-        od.record(name)
+        with od.write(name) as tmp:
+            tmp.write_bytes(data)
 
     with drawing(runs, revs) as drawn:  # in another process, meanwhile the ensemble runs [T220]
         ens = None

@@ -137,6 +137,9 @@ def run(
         except Interrupted as err:
             out.finish("interrupted", f"{err} while writing the results")
             raise
+        except BaseException as err:  # e.g. a file there that jointdyn did not write
+            out.finish("failed", f"{type(err).__name__}: {err} while writing the results")
+            raise
         out.finish("complete")
     return res, head, summ
 

@@ -11,6 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from jointdyn import post
+from jointdyn.core import atomic
 from jointdyn.studies.poincare import stroboscopic_indices
 
 
@@ -88,5 +89,6 @@ def plot_spectra(spec: dict, path, max_harmonic: float = 40.0, title: str = "") 
     if title:
         axes[0, 0].set_title(title)
     fig.tight_layout()
-    fig.savefig(path, dpi=120)
+    with atomic.replacing(path) as tmp:
+        fig.savefig(tmp, dpi=120, format="png")
     plt.close(fig)

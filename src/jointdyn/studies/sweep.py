@@ -38,6 +38,7 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn.core import atomic, interrupts
+from jointdyn.core.atomic import OutputError
 from jointdyn.errors import Interrupted
 from jointdyn.studies import options
 from jointdyn.studies.sweep_spec import (
@@ -196,6 +197,7 @@ def run_sweep(
         od = OutputDir(out, "sweep", rec).claim(overwrite=overwrite, resume=resume)
         try:
             _check_owner(out, rec, resume)
+            od.adopt("spec.json")
         except BaseException:
             od.release()
             raise
@@ -208,15 +210,27 @@ def run_sweep(
 def _run(spec, od, cases, invalid, rec, client, workers, progress):
     out = od.path
     cdir = out / "cases"
+    if cdir.is_symlink() or (cdir.exists() and not cdir.is_dir()):
+        raise OutputError(f"--out {out}: cases is not a directory jointdyn made; move it")
     cdir.mkdir(exist_ok=True)
-    atomic.write_json(out / "spec.json", rec)
+    with od.write("spec.json") as tmp:
+        tmp.write_text(json.dumps(rec, indent=2, default=str) + "\n", encoding="utf-8")
     todo = [i for i in range(len(cases)) if not (cdir / f"case_{i:05d}.json").exists()]
     sp = (lambda i: str(cdir / f"case_{i:05d}.nc")) if spec.keep_series else (lambda i: None)
     done = len(cases) - len(todo)
+    if spec.keep_series:
+        for i in todo:  # written by the workers: known to a later --overwrite even if killed
+            od.journal(f"cases/case_{i:05d}.nc")
 
     def record(i, result):
         nonlocal done
-        atomic.write_json(cdir / f"case_{i:05d}.json", {"case": i, "params": cases[i], **result})
+        with od.write(f"cases/case_{i:05d}.json") as tmp:
+            tmp.write_text(
+                json.dumps({"case": i, "params": cases[i], **result}, indent=2, default=str) + "\n",
+                encoding="utf-8",
+            )
+        if spec.keep_series and (cdir / f"case_{i:05d}.nc").is_file():
+            od.record(f"cases/case_{i:05d}.nc")
         done += 1
         if progress:
             progress(done, len(cases))
@@ -247,8 +261,10 @@ def _run(spec, od, cases, invalid, rec, client, workers, progress):
     except BaseException as err:
         od.finish("failed", f"{type(err).__name__}: {err}")
         raise
-    for f in sorted(cdir.iterdir()):
-        od.record(f"cases/{f.name}")
+    for i in range(len(cases)):  # this run's cases and those of the run it resumed
+        for name in (f"cases/case_{i:05d}.json", f"cases/case_{i:05d}.nc"):
+            if name not in od.files and (out / name).is_file():
+                od.record(name)
     failed = int((ds["error"] != "").sum())
     od.finish("complete", f"{failed} of {len(cases)} cases failed" if failed else "", n_cases=len(cases))
     return ds

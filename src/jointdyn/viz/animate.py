@@ -152,16 +152,21 @@ def animate(results_file, out, frames: int = 120, fps: int = 20, last_revs: floa
     for a in moving:
         a.set_animated(True)  # left out of the full draw: the background is static
     out = Path(out)
-    with _writer(out, fig, fps) as write:
-        fig.canvas.draw()
-        background = fig.canvas.copy_from_bbox(fig.bbox)
-        for j in range(len(idx)):
-            draw(j)
-            fig.canvas.restore_region(background)
-            for a in moving:
-                fig.draw_artist(a)
-            write(np.asarray(fig.canvas.buffer_rgba()))
-    plt.close(fig)
+    from jointdyn.core.atomic import replacing
+
+    try:
+        with replacing(out) as tmp:  # the temporary name keeps the suffix
+            with _writer(Path(tmp), fig, fps) as write:
+                fig.canvas.draw()
+                background = fig.canvas.copy_from_bbox(fig.bbox)
+                for j in range(len(idx)):
+                    draw(j)
+                    fig.canvas.restore_region(background)
+                    for a in moving:
+                        fig.draw_artist(a)
+                    write(np.asarray(fig.canvas.buffer_rgba()))
+    finally:
+        plt.close(fig)
     return out
 
 
@@ -223,5 +228,8 @@ def frame_png(results_file, out, fraction: float = 0.5, **kw) -> Path:
         gif = animate(results_file, Path(tmp) / "a.gif", frames=kw.pop("frames", 21), **kw)
         im = Image.open(gif)
         im.seek(int(round(fraction * (im.n_frames - 1))))
-        im.convert("RGB").save(out)
+        from jointdyn.core.atomic import replacing
+
+        with replacing(Path(out)) as t:
+            im.convert("RGB").save(t, format=(Path(out).suffix[1:] or "png").upper().replace("JPG", "JPEG"))
     return Path(out)

@@ -229,7 +229,9 @@ def reproduction_html(runs: dict, out, revs: float) -> Path:
             )
         )
     out = Path(out)
-    with out.open("wb") as f:  # written piece by piece: the page is never one string in memory
+    from jointdyn.core.atomic import replacing
+
+    with replacing(out) as tmp, tmp.open("wb") as f:  # piece by piece: never one string in memory
         f.write(
             b"<!DOCTYPE html><html><head><meta charset='utf-8'>"
             + "<title>jointdyn — interactive reproduction</title><script>".encode()

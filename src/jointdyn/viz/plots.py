@@ -321,8 +321,13 @@ def plot_run(directory, what: str = "moment", out=None, overlay=(), **kw) -> Pat
         plt.close(fig)
         raise ValueError(f"out = {str(target)!r}: would overwrite the run's own figure; choose another name")
     fig.tight_layout()
-    fig.savefig(target, dpi=150)
-    plt.close(fig)
+    from jointdyn.io.derived import output_file
+
+    try:
+        with output_file(target) as tmp:  # in a run directory: added to its manifest
+            fig.savefig(tmp, dpi=150, format=target.suffix[1:] or "png")
+    finally:
+        plt.close(fig)
     return target
 
 

@@ -7,6 +7,7 @@ import re
 import tomllib
 from pathlib import Path
 
+from jointdyn.core import atomic
 from jointdyn.errors import ModelError
 
 
@@ -109,6 +110,7 @@ def read_toml(path, what: str = "model file") -> tuple[dict, str]:
     failure is one :class:`ModelError` line naming the file (and line and key for syntax errors)."""
     path = Path(path)
     try:
+        atomic.regular_input(path, what)  # a FIFO or device would block or never end
         text = path.read_text(encoding="utf-8").removeprefix("\ufeff")
     except FileNotFoundError:
         raise ModelError(f"{path}: no such {what}") from None
@@ -116,6 +118,8 @@ def read_toml(path, what: str = "model file") -> tuple[dict, str]:
         raise ModelError(f"{path}: is a directory, not a {what}") from None
     except UnicodeDecodeError as err:
         raise ModelError(f"{path}: not a UTF-8 text file ({err.reason} at byte {err.start})") from None
+    except ValueError as err:  # not a regular file
+        raise ModelError(str(err)) from None
     try:
         return tomllib.loads(text), text
     except tomllib.TOMLDecodeError as err:
