@@ -157,7 +157,7 @@ def cli_times():
         ):
             t0 = time.perf_counter()
             subprocess.run(
-                exe + ["--out", os.path.join(d, "o")], check=True, env=env, cwd=ROOT, capture_output=True
+                exe + ["--out", os.path.join(d, label)], check=True, env=env, cwd=ROOT, capture_output=True
             )
             res[label] = time.perf_counter() - t0
     return res
