@@ -169,6 +169,12 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
     return kw
 
 
+def shipped_model(joint: str, given: dict, option_names: dict | None = None):
+    """The slider-crank :class:`~jointdyn.multibody.model.Model` with piston-pin ``joint`` and
+    the user's arguments ``given`` (checked by :func:`slider_crank_args`; SI)."""
+    return sc.slider_crank(joint, **slider_crank_args(joint, given, option_names))
+
+
 def _acts(name: str) -> str:
     kinds = [j for j in joints() if name in relevant(j)]
     lub = [j for j in kinds if j not in ("perfect", "dry")]
