@@ -132,7 +132,7 @@ def _model_system(model: str, set_: list[str], joint: str, shipped: dict):
         raise ValueError("--set applies to model files only")
     if model != "slider-crank":
         raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
-    from jointdyn.studies import options
+    from jointdyn.models import slider_crank_args as options
 
     given = {k: v for k, v in shipped.items() if v is not None}
     return options.shipped_model(joint, given).compile()

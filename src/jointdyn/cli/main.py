@@ -9,7 +9,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from jointdyn.cli.common import _one_line_errors, _progress, app, console
-from jointdyn.studies import options
+from jointdyn.models import slider_crank_args as options
+from jointdyn.studies.memory import check_memory
 
 _RA = options.run_args()
 
@@ -103,7 +104,7 @@ def run(
             from jointdyn.studies.runs import prepare_model_file, run_model_file
 
             prepared = prepare_model_file(model, set_)
-            options.check_memory(prepared[1], prepared[2].n_out, "simulation.n_out")
+            check_memory(prepared[1], prepared[2].n_out, "simulation.n_out")
             od = OutputDir(out, "run", prepared[3]).claim(overwrite)
             with _progress("run") as prog:
                 task = prog.add_task(prepared[0].name, total=1.0)
@@ -148,7 +149,7 @@ def _run_slider_crank(given: dict, out: Path, overwrite: bool) -> None:
     if run_kw.get("solver", "auto") not in ("auto", *SOLVERS):
         raise ValueError(f"--solver {run_kw['solver']!r}: unknown; valid: auto, {', '.join(SOLVERS)}")
     cfg = slider_crank_config(joint, revs, speed=model_kw.get("speed", SPEED), **run_kw)
-    options.check_memory(slider_crank(joint, **model_kw), cfg.n_out, "--revs × --samples-per-rev")
+    check_memory(slider_crank(joint, **model_kw), cfg.n_out, "--revs × --samples-per-rev")
     spec = {"model": "slider-crank", "joint": joint, "revs": revs, **run_kw} | {
         k: given[k] for k in given if k not in run_kw
     }

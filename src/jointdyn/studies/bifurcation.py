@@ -62,7 +62,7 @@ class BifurcationSpec:
     """optional ``element``, ``driver``, ``period`` [s] of the section (defaults: the model's)"""
 
     def __post_init__(self):
-        from jointdyn.studies.options import builder_args
+        from jointdyn.models.slider_crank_args import builder_args
 
         valid = list(builder_args())
         if "file" not in self.base and self.parameter not in valid:  # model-file keys: its loader checks
@@ -221,17 +221,6 @@ def to_dataset(spec: BifurcationSpec, results: list[dict]):
     return ds
 
 
-PARAM_UNITS = {
-    "speed": "rad/s",
-    "gravity": "m/s²",
-    "clearance": "m",
-    "viscosity": "Pa·s",
-    "length": "m",
-    "restitution": "-",
-    "asperity_height": "m",
-}
-
-
 def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> None:
     """Section values against the parameter (one dot per recorded revolution), and the median
     impacts per revolution."""
@@ -242,9 +231,10 @@ def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> 
 
     p = next(iter(ds[variable].dims))
     x = ds[p].values
-    scale, unit = (
-        (1e3, "mm") if p in ("clearance", "length", "asperity_height") else (1.0, PARAM_UNITS.get(p, ""))
-    )
+    from jointdyn.models.slider_crank_args import builder_args
+
+    unit = builder_args().get(p, (0.0, ds[p].attrs.get("units", "")))[1]  # a model-file key: its own
+    scale, unit = (1e3, "mm") if unit == "m" else (1.0, unit)
     if p == "speed":
         scale, unit = 60 / (2 * math.pi), "rpm"
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})

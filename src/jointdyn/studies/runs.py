@@ -53,7 +53,7 @@ def run(
     (if any) are written with their status and the error is re-raised.
     """
     system = model.compile() if hasattr(model, "compile") else model
-    from jointdyn.studies.options import check_memory
+    from jointdyn.studies.memory import check_memory
 
     check_memory(system, config.n_out)
 

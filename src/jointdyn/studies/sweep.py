@@ -39,7 +39,7 @@ import numpy as np
 
 from jointdyn.core import atomic, interrupts
 from jointdyn.errors import Interrupted
-from jointdyn.studies import options
+from jointdyn.models import slider_crank_args as options
 from jointdyn.studies.sweep_spec import (
     SweepSpec,
     latin_hypercube,
@@ -98,7 +98,7 @@ def run_case(base: dict, params: dict, series_path: str | None = None, arrays: d
                 _, system, cfg = load_file_case(merged)
                 res, _, summ = runs.run(system, cfg)
             else:
-                from jointdyn.studies.options import joints
+                from jointdyn.models.slider_crank_args import joints
                 from jointdyn.studies.sweep_spec import slider_crank_call
 
                 # validate() refused arguments that act on no joint of the sweep; the rest that

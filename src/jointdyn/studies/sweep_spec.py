@@ -17,7 +17,7 @@ import numpy as np
 
 from jointdyn.core.checks import check
 from jointdyn.io.modelfile.locate import read_toml
-from jointdyn.studies import options
+from jointdyn.models import slider_crank_args as options
 
 TABLES = ("base", "grid", "zip", "sample", "output", "dask")
 #: array outputs a case can return besides its scalar metrics ([output.NAME] tables): name ->
