@@ -118,7 +118,7 @@ def spectrum():
     from jointdyn.studies.spectra import plot_spectra, run_spectra
 
     res, _, _ = run_slider_crank("dry", 60, samples_per_rev=720, rtol=1e-8, atol=1e-11)
-    sp = run_spectra(res, transient_revs=10)
+    sp = run_spectra(res, transient_revs=10, slider="slider")
     plot_spectra(sp, FIG / "chaos_spectrum_dry.png", 40, "dry slider-crank, revolutions 10–60")
     print("spectrum: harmonic 1 of the slider acceleration", sp["slider_acceleration"][sp["harmonic"] == 1][0])
 

@@ -125,7 +125,7 @@ def test_spectrum_of_the_perfect_slider_crank_matches_the_kinematics():
     # ẍ has harmonic 1 of amplitude r ω² exactly and no odd harmonics ≥ 3 [T130]; harmonic 2
     # from the Fourier coefficient of the exact x(φ) by a 4096-point trapezoidal rule (spectral)
     res, _, _ = run_slider_crank("perfect", 4.0, samples_per_rev=720, rtol=1e-11, atol=1e-13)
-    sp = run_spectra(res, transient_revs=1)
+    sp = run_spectra(res, transient_revs=1, slider="slider")
     h, a = sp["harmonic"], sp["slider_acceleration"]
     r, l, w = sc.CRANK_LENGTH, sc.ROD_LENGTH, sc.SPEED
     assert a[h == 1][0] == pytest.approx(r * w * w, rel=1e-7)  # integration error of q̈, rtol 1e-11
@@ -291,7 +291,7 @@ def test_reproduce_ensemble_quotes_the_per_revolution_statistics_of_its_runs():
     ens = dry_ensemble(workers=1, **kw)
     pooled = {}
     for seed in (0, 1):
-        for k, v in _run_case("dry", {}, 4, 1, 1e-7, seed, 720).items():
+        for k, v in _run_case("slider-crank", {"joint": "dry"}, 4, 1, 1e-7, seed, 720).items():
             pooled.setdefault(k, []).extend(v)
     rows = {r["quantity"]: r for r in ensemble_rows(ens)}
     for k, scale in (("peak_moment", 1.0), ("rms_moment", 1.0), ("impacts", 1.0), ("max_penetration", 1e6)):

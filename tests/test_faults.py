@@ -33,9 +33,9 @@ from jointdyn.forces.friction_laws import FRICTION_LAWS
 from jointdyn.integrators import SOLVERS
 from jointdyn.io.modelfile import dumps, load_model
 from jointdyn.io.rundir import LOCK, OutputDir, read_manifest
+from jointdyn.models import slider_crank_args as options
 from jointdyn.models.slider_crank import slider_crank
 from jointdyn.simulation.simulate import SimConfig
-from jointdyn.studies import options
 from jointdyn.studies.sweep import load_sweep, run_sweep
 
 runner = CliRunner()

@@ -52,30 +52,26 @@ def _guarded(command):
     return run
 
 
-def _speed_of(res, body: str = "crank") -> float:
-    a = res.coordinate(body, "phi")
-    return float((a[-1] - a[0]) / (res.t[-1] - res.t[0]))
-
-
 def poincare(
     directory: Path = typer.Argument(..., help="a run directory with results.nc (from `jointdyn run`)"),
-    element: str = typer.Option("piston_pin", help="journal element whose relative state is mapped"),
-    body: str = typer.Option("crank", help="driven body whose angle defines the section"),
-    angle: float = typer.Option(0.0, help="crank angle of the stroboscopic section [deg]"),
+    element: str = typer.Option(None, help="journal element mapped (default: the first)"),
+    driver: str = typer.Option(None, help="angle driver of the revolution (default: the first)"),
+    period: float = typer.Option(None, help="period of the section [s] instead of the driver's 2π/ω"),
+    angle: float = typer.Option(0.0, help="phase of the stroboscopic section in the revolution [deg]"),
     transient_revs: int = typer.Option(10, help="revolutions discarded at the start [rev]"),
     plane: str = typer.Option(
         None, help="plane-crossing section instead, VARIABLE=LEVEL (e.g. ey_over_c=0; upward crossings)"
     ),
     out: Path = typer.Option(None, help="output directory (default: DIR)"),
 ):
-    """Poincaré section (stroboscopic at a crank angle, or a plane crossing) of a journal's
-    relative position and velocity: writes poincare.csv and poincare.png."""
-    from jointdyn.studies.poincare import journal_section, plot_sections
+    """Poincaré section (stroboscopic at a phase of the revolution, or a plane crossing) of a
+    journal's relative position and velocity: writes poincare.csv and poincare.png."""
+    from jointdyn.studies.poincare import journal_section, phase, plot_sections
     from jointdyn.studies.saved_runs import load_run
 
     try:
         res = load_run(directory)
-        w = _speed_of(res, body)
+        _, w = phase(res, driver, period)
         pl = None
         if plane:
             key, sep, level = plane.partition("=")
@@ -83,11 +79,11 @@ def poincare(
                 raise ValueError(f"--plane {plane!r}: expected VARIABLE=LEVEL")
             pl = (key.strip(), float(level), 1)
         T = 2 * math.pi / abs(w)
-        sec = journal_section(res, element, body, math.radians(angle), transient_revs * T, plane=pl)
+        sec = journal_section(res, element, driver, math.radians(angle), transient_revs * T, period, plane=pl)
     except (ValueError, KeyError, TypeError) as err:
         _fail(err)
     out = Path(out or directory)
-    where = f"plane {plane}" if plane else f"crank angle {angle:g}°"
+    where = f"plane {plane}" if plane else f"phase {angle:g}°"
     with derived(out, "poincare") as od:  # in a run directory: added to its manifest
         with od.write("poincare.csv") as tmp, open(tmp, "w") as f:
             names = list(sec.values)
@@ -138,17 +134,46 @@ def bifurcation(
     console.print(f"wrote {out}/bifurcation.nc, bifurcation.png ({len(sp.values)} values, {failed} failed)")
 
 
+def _value(text: str):
+    """A --set value: a TOML value (number, bool, "string"), else the bare text."""
+    import tomllib
+
+    try:
+        return tomllib.loads(f"v = {text}")["v"]
+    except tomllib.TOMLDecodeError:
+        return text.strip()
+
+
+def _model_system(model: str, set_: list[str], joint: str, shipped: dict):
+    """The System of MODEL: a model file with ``--set`` overrides, or the slider-crank with
+    ``joint`` and its builder arguments ``shipped`` (None values = defaults)."""
+    if model.endswith(".toml") or Path(model).is_file():
+        from jointdyn.io.modelfile import load_model
+
+        return load_model(model, set_)[0].compile()
+    if set_:
+        raise ValueError("--set applies to model files only")
+    if model != "slider-crank":
+        raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
+    from jointdyn.models import slider_crank_args as options
+
+    given = {k: v for k, v in shipped.items() if v is not None}
+    return options.shipped_model(joint, given).compile()
+
+
 def lyapunov(
     model: str = typer.Argument(..., help="slider-crank or a model file FILE.toml"),
     joint: str = typer.Option("dry", help="slider-crank piston-pin joint kind"),
-    clearance: float = typer.Option(0.5e-3, help="slider-crank radial clearance [m]"),
-    revs: float = typer.Option(30.0, help="slider-crank: averaging revolutions [rev]"),
-    transient_revs: float = typer.Option(10.0, help="slider-crank: revolutions before averaging [rev]"),
-    per_rev: int = typer.Option(16, help="slider-crank: renormalisations per revolution [-]"),
-    tau: float = typer.Option(None, help="model file: renormalisation interval [s]"),
-    segments: int = typer.Option(None, help="model file: number of renormalisation intervals [-]"),
-    transient: float = typer.Option(0.0, help="model file: time before averaging [s]"),
-    time_scale: float = typer.Option(None, help="velocity weight of the deviation norm [s] (default 1/ω)"),
+    clearance: float = typer.Option(None, help="slider-crank radial clearance [m] (default 0.5e-3)"),
+    speed: float = typer.Option(None, help="slider-crank crank speed [rpm] (default 5000)"),
+    revs: float = typer.Option(30.0, help="averaging revolutions of the angle driver [rev]"),
+    transient_revs: float = typer.Option(10.0, help="revolutions before averaging [rev]"),
+    per_rev: int = typer.Option(16, help="renormalisations per revolution [-]"),
+    period: float = typer.Option(None, help="revolution period [s] (default: 2π/ω of the first driver)"),
+    tau: float = typer.Option(None, help="renormalisation interval [s] (default: period/per-rev)"),
+    segments: int = typer.Option(None, help="renormalisation intervals [-] (default: revs·per-rev)"),
+    transient: float = typer.Option(None, help="time before averaging [s] (default: transient-revs periods)"),
+    time_scale: float = typer.Option(None, help="velocity weight of the norm [s] (default 1/ω, else 1)"),
     d0: float = typer.Option(1e-8, help="renormalised separation [norm units: m, rad]"),
     solver: str = typer.Option("auto", help="integrator"),
     rtol: float = typer.Option(1e-9, help="relative tolerance [-]"),
@@ -160,34 +185,36 @@ def lyapunov(
     overwrite: bool = typer.Option(False, help="replace jointdyn's files of a previous result in --out"),
 ):
     """Largest Lyapunov exponent (Benettin two-trajectory renormalisation): writes summary.json
-    (largest_lyapunov_exponent [1/s] and its standard error), lyapunov.csv and lyapunov.png."""
+    (largest_lyapunov_exponent [1/s] and its standard error), lyapunov.csv and lyapunov.png.
+    Intervals and averaging time count revolutions of the model's first angle driver (or of
+    --period) unless --tau and --segments give them."""
     from jointdyn.errors import ModelError, SimulationError
+    from jointdyn.studies import period as per
     from jointdyn.studies.lyapunov import plot_running, system_lyapunov
 
     try:
-        if model.endswith(".toml"):
-            from jointdyn.io.modelfile import load_model
+        from jointdyn.units import rpm
 
-            m, _ = load_model(model, set_)
-            system = m.compile()
-            if tau is None or segments is None:
-                raise ValueError("a model file needs --tau [s] and --segments [-]")
-            ts = 1.0 if time_scale is None else time_scale
-            kw = {"tau": tau, "n_segments": segments, "transient": transient}
-        elif model == "slider-crank":
-            from jointdyn.models import slider_crank as sc
-
-            kwj = {} if joint == "perfect" else {"clearance": clearance}
-            system = sc.slider_crank(joint, **kwj).compile()
-            T = 2 * math.pi / sc.SPEED
-            ts = 1.0 / sc.SPEED if time_scale is None else time_scale
-            kw = {
-                "tau": T / per_rev,
-                "n_segments": int(round(revs * per_rev)),
-                "transient": transient_revs * T,
-            }
+        shipped = {"clearance": 0.5e-3 if clearance is None and joint != "perfect" else clearance}
+        shipped["speed"] = None if speed is None else rpm(speed)
+        system = _model_system(model, set_, joint, shipped)
+        T: float | None = None
+        if period is not None:
+            if not (math.isfinite(period) and period > 0):
+                raise ValueError(f"--period = {period!r} [s]: must be finite and > 0")
+            T, w = period, 2 * math.pi / period
         else:
-            raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
+            try:
+                T, w = per.driver_period(system), abs(per.driver(system).omega)
+            except ValueError as err:
+                if tau is None or segments is None:
+                    raise ValueError(f"{err}; or give --tau [s] and --segments [-]") from None
+        ts = time_scale if time_scale is not None else (1.0 / w if T is not None else 1.0)
+        kw = {
+            "tau": tau if tau is not None else T / per_rev,
+            "n_segments": segments if segments is not None else int(round(revs * per_rev)),
+            "transient": transient if transient is not None else (transient_revs * T if T else 0.0),
+        }
         OutputDir(out, "lyapunov", {}).check(overwrite)  # inputs first, then the output directory
         res = system_lyapunov(
             system,
@@ -222,16 +249,20 @@ def spectrum(
     directory: Path = typer.Argument(..., help="a run directory with results.nc (from `jointdyn run`)"),
     transient_revs: int = typer.Option(2, help="revolutions discarded at the start [rev]"),
     max_harmonic: float = typer.Option(40.0, help="highest harmonic drawn [-]"),
+    driver: str = typer.Option(None, help="angle driver: its moment and revolution (default: the first)"),
+    element: str = typer.Option(None, help="journal element whose force is analysed (default: the first)"),
+    body: str = typer.Option(None, help="also the x acceleration of this body (e.g. slider)"),
     out: Path = typer.Option(None, help="output directory (default: DIR)"),
 ):
-    """Amplitude spectra of the crank moment, slider acceleration and joint force in harmonics
-    of the crank speed: writes spectrum.csv and spectrum.png."""
+    """Amplitude spectra of an angle driver's moment, a journal element's force and optionally
+    a body's x acceleration in harmonics of the driver's speed: writes spectrum.csv and
+    spectrum.png."""
     from jointdyn.studies.saved_runs import load_run
     from jointdyn.studies.spectra import UNITS, plot_spectra, run_spectra
 
     try:
         res = load_run(directory)
-        sp = run_spectra(res, transient_revs)
+        sp = run_spectra(res, transient_revs, driver, body, "" if element is None else element)
     except (ValueError, KeyError) as err:
         _fail(err)
     out = Path(out or directory)
@@ -247,30 +278,54 @@ def spectrum(
 
 
 def ensemble(
+    model: str = typer.Argument("slider-crank", help="slider-crank or a model file FILE.toml"),
     joint: str = typer.Option("dry", help="slider-crank piston-pin joint kind"),
+    set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
     rtols: str = typer.Option("1e-7,1e-8,1e-9", help="comma-separated relative tolerances [-]"),
     replicas: int = typer.Option(1, help="runs per tolerance (replica r > 0: perturbed initial velocities)"),
-    revs: int = typer.Option(60, help="revolutions per run [rev]"),
+    revs: int = typer.Option(60, help="revolutions of the first angle driver per run [rev]"),
     transient_revs: int = typer.Option(10, help="revolutions discarded [rev]"),
+    samples_per_rev: int = typer.Option(720, help="output samples per revolution [-]"),
     workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
     out: Path = typer.Option(Path("out/ensemble"), help="output directory"),
     overwrite: bool = typer.Option(False, help="replace jointdyn's files of a previous ensemble in --out"),
 ):
-    """Distributions of per-revolution quantities of the slider-crank (median, 5–95 %) with a
-    convergence check across tolerances: writes ensemble.json."""
-    from jointdyn.studies.ensemble import ensemble_table, slider_crank_ensemble
+    """Distributions of per-revolution quantities (median, 5–95 %) with a convergence check
+    across tolerances: writes ensemble.json."""
+    from jointdyn.studies.ensemble import ensemble as run_ensemble
+    from jointdyn.studies.ensemble import ensemble_table
 
     try:
         OutputDir(out, "ensemble", {}).check(overwrite)
-        r = slider_crank_ensemble(
-            joint, tuple(float(v) for v in rtols.split(",")), replicas, revs, transient_revs, workers=workers
+        if model.endswith(".toml"):
+            kw: dict = {}
+            for item in set_:
+                key, sep, value = item.partition("=")
+                if not sep:
+                    raise ValueError(f"--set {item!r}: expected KEY=VALUE")
+                kw[key.strip()] = _value(value)
+            name = model
+        elif set_:
+            raise ValueError("--set applies to model files only")
+        else:
+            kw, name = {"joint": joint}, f"slider-crank ({joint})"
+        r = run_ensemble(
+            model,
+            kw,
+            tuple(float(v) for v in rtols.split(",")),
+            replicas,
+            revs,
+            transient_revs,
+            samples_per_rev,
+            workers=workers,
         )
     except ValueError as err:  # SimulationError, Interrupted: the CLI wrapper (exit 1, 130/143)
         _fail(err)
-    spec = {"joint": joint, "rtols": rtols, "replicas": replicas, "revs": revs, "transient": transient_revs}
+    spec = {"model": model, "joint": joint, "set": list(set_), "rtols": rtols, "replicas": replicas}
+    spec |= {"revs": revs, "transient": transient_revs, "samples_per_rev": samples_per_rev}
     with _claimed(out, "ensemble", spec, overwrite) as od, od.write("ensemble.json") as tmp:
         tmp.write_text(json.dumps(r, indent=2) + "\n", encoding="utf-8")
-    tab = Table(title=f"slider-crank ({joint}), revolutions {transient_revs}–{revs}, rtol {rtols}")
+    tab = Table(title=f"{name}, revolutions {transient_revs}–{revs}, rtol {rtols}")
     for c in ("quantity", "unit", "median", "5 %", "95 %", "n", "shift", "converged"):
         tab.add_column(c)
     for row in ensemble_table(r):

@@ -266,7 +266,7 @@ def list_registries(
     from jointdyn.forces.elements import FORCE_ELEMENTS
     from jointdyn.forces.friction_laws import FRICTION_LAWS
     from jointdyn.integrators import SOLVERS
-    from jointdyn.studies import options
+    from jointdyn.models import slider_crank_args as options
 
     regs = {
         "constraints": {k: _doc(v) for k, v in CONSTRAINTS.items()},

@@ -9,7 +9,8 @@ from rich.markup import escape
 from rich.table import Table
 
 from jointdyn.cli.common import _one_line_errors, _progress, app, console
-from jointdyn.studies import options
+from jointdyn.models import slider_crank_args as options
+from jointdyn.studies.memory import check_memory
 
 _RA = options.run_args()
 
@@ -51,6 +52,7 @@ def run(
         None, help=_arg_help("clearance", "radial clearance c of an imperfect joint")
     ),
     viscosity: float = typer.Option(None, help=_arg_help("viscosity", "lubricant dynamic viscosity")),
+    speed: float = typer.Option(None, help="crank speed, CCW [rpm] (default 5000; the drive's omega)"),
     length: float = typer.Option(None, help=_arg_help("length", "bearing length")),
     friction: float = typer.Option(None, help="Ambrósio friction coefficient in contact [-] (default 0)"),
     contact: bool = typer.Option(False, help="lubricated joint: add Lankarani–Nikravesh asperity contact"),
@@ -81,6 +83,7 @@ def run(
         "atol": atol,
         "clearance": clearance,
         "viscosity": viscosity,
+        "speed": speed,
         "length": length,
         "friction": friction,
         "asperity_height": asperity_height,
@@ -101,7 +104,7 @@ def run(
             from jointdyn.studies.runs import prepare_model_file, run_model_file
 
             prepared = prepare_model_file(model, set_)
-            options.check_memory(prepared[1], prepared[2].n_out, "simulation.n_out")
+            check_memory(prepared[1], prepared[2].n_out, "simulation.n_out")
             od = OutputDir(out, "run", prepared[3]).claim(overwrite)
             with _progress("run") as prog:
                 task = prog.add_task(prepared[0].name, total=1.0)
@@ -120,13 +123,19 @@ def run(
             raise ValueError(
                 f"MODEL {model!r}: unknown shipped model and not a file; valid: slider-crank or FILE.toml"
             )
+        if "speed" in given:  # rpm only at this edge, rad/s inside
+            from jointdyn.core.checks import check
+            from jointdyn.units import rpm
+
+            check("--speed", given["speed"], "rpm", "!= 0")
+            given["speed"] = rpm(given["speed"])
         _run_slider_crank(given, out, overwrite)
 
 
 def _run_slider_crank(given: dict, out: Path, overwrite: bool) -> None:
     from jointdyn.integrators import SOLVERS
     from jointdyn.io.rundir import OutputDir
-    from jointdyn.models.slider_crank import slider_crank
+    from jointdyn.models.slider_crank import SPEED, slider_crank
     from jointdyn.studies.runs import run_slider_crank, slider_crank_config
 
     joint = given.pop("joint", "perfect")
@@ -139,8 +148,8 @@ def _run_slider_crank(given: dict, out: Path, overwrite: bool) -> None:
     )
     if run_kw.get("solver", "auto") not in ("auto", *SOLVERS):
         raise ValueError(f"--solver {run_kw['solver']!r}: unknown; valid: auto, {', '.join(SOLVERS)}")
-    cfg = slider_crank_config(joint, revs, **run_kw)
-    options.check_memory(slider_crank(joint, **model_kw), cfg.n_out, "--revs × --samples-per-rev")
+    cfg = slider_crank_config(joint, revs, speed=model_kw.get("speed", SPEED), **run_kw)
+    check_memory(slider_crank(joint, **model_kw), cfg.n_out, "--revs × --samples-per-rev")
     spec = {"model": "slider-crank", "joint": joint, "revs": revs, **run_kw} | {
         k: given[k] for k in given if k not in run_kw
     }

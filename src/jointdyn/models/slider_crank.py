@@ -11,6 +11,9 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
+from jointdyn import post
 from jointdyn.core.constraints import AngleDriver, Revolute, Translational
 from jointdyn.film.models import FILM_MODELS
 from jointdyn.forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
@@ -159,3 +162,64 @@ def slider_crank_config(
         rtol=rtol,
         atol=atol,
     )
+
+
+#: the shipped model's metric names (README tables, docs, sweeps) as aliases of the generic
+#: metrics of :mod:`jointdyn.studies.metrics` [T228]
+METRIC_ALIASES = {
+    "peak_moment": "drive.moment_peak",
+    "min_moment": "drive.moment_min",
+    "rms_moment": "drive.moment_rms",
+    "max_xi": f"{PIN}.xi_max",
+    "min_h_min": f"{PIN}.h_min_min",
+    "max_contact_force": f"{PIN}.contact_force_max",
+    "max_penetration": f"{PIN}.max_penetration",
+    "impacts": f"{PIN}.impacts",
+    "energy_dissipated": f"{PIN}.energy_dissipated",
+}
+#: units of the derived headline columns (element outputs take the element's own)
+HEADLINE_UNITS = {"crank_angle": "rad", "crank_moment": "N·m", "ex_over_c": "-", "ey_over_c": "-"}
+
+
+def table(res) -> dict[str, np.ndarray]:
+    """Time series of a slider-crank run: t [s], crank_angle [rad, unwrapped], crank_moment
+    [N·m] (the drive's moment on the crank, CCW positive), and for an imperfect piston pin
+    ex_over_c, ey_over_c [-], h_min [m], joint_force [N] (magnitude on the journal),
+    contact_force [N]."""
+    cols = {
+        "t": res.t,
+        "crank_angle": post.body_angle(res, "crank"),
+        "crank_moment": post.driving_moment(res, "drive"),
+    }
+    if PIN in res.system.element_names:
+        c = res.system.elements[res.system.element_names.index(PIN)].clearance
+        cols["ex_over_c"] = res.element(PIN, "ex") / c
+        cols["ey_over_c"] = res.element(PIN, "ey") / c
+        cols["h_min"] = res.element(PIN, "h_min")
+        cols["joint_force"] = np.hypot(res.element(PIN, "Fx"), res.element(PIN, "Fy"))
+        cols["contact_force"] = res.element(PIN, "contact_force")
+    return cols
+
+
+def headline(res):
+    """(columns of :func:`table`, their units): the first columns of ``timeseries.csv``."""
+    units = dict(HEADLINE_UNITS)
+    if PIN in res.system.element_names:  # the element's declared units; |F| in those of Fx
+        outs = type(res.system.elements[res.system.element_names.index(PIN)]).OUTPUTS
+        units |= {"h_min": outs["h_min"], "contact_force": outs["contact_force"], "joint_force": outs["Fx"]}
+    return table(res), units
+
+
+def summarize(res, cols: dict, metrics: dict, revs: float) -> dict:
+    """The slider-crank's summary: the generic ``metrics`` under their short names
+    (:data:`METRIC_ALIASES`; the moment over the last revolution), the moment statistics over the
+    whole run (``*_moment_all``) and the piston pin's time in contact [s] and its fraction [-]."""
+    out = {"joint": res.system.name, "revolutions": revs}
+    out |= {k: metrics[k] for k in METRIC_ALIASES if k in metrics}
+    out |= {f"{k}_moment_all": v for k, v in post.stats(cols["crank_moment"]).items()}
+    if "contact_force" in cols:
+        in_contact = cols["contact_force"] > 0
+        dt = np.diff(res.t)
+        out["contact_time_s"] = float(np.sum(dt * 0.5 * (in_contact[1:] + in_contact[:-1])))
+        out["contact_fraction"] = out["contact_time_s"] / float(res.t[-1] - res.t[0])
+    return out

@@ -1,20 +1,24 @@
-"""Bifurcation diagrams of the shipped slider-crank over one builder parameter [T131].
+"""Bifurcation diagrams over one parameter of a model file or the shipped slider-crank [T131].
 
 For each parameter value: one long run, the first ``transient_revs`` revolutions discarded,
-then the stroboscopic section (crank angle ``section_angle``) of the journal's relative state
-over ``record_revs`` revolutions [T122]. A periodic response with period p revolutions shows p
-points per parameter value, a quasi-periodic or chaotic one a cloud. A diagram file::
+then the stroboscopic section (phase ``section_angle`` of the revolution of the model's angle
+driver, or of an explicit ``period``) of a journal's relative state over ``record_revs``
+revolutions [T122]. A periodic response with period p revolutions shows p points per parameter
+value, a quasi-periodic or chaotic one a cloud. A diagram file::
 
-    [base]                      # slider-crank builder/run arguments, as in a sweep file
-    joint = "dry"
-    rtol = 1e-8
+    [base]                      # as in a sweep file: a model file …
+    file = "four_bar.toml"      # (relative to the diagram file)
+    # … or the shipped model's builder/run arguments: joint = "dry", rtol = 1e-8
     [bifurcation]
-    parameter = "clearance"     # a numeric builder argument (jointdyn.studies.options.builder_args())
+    parameter = "elements.pin.viscosity"   # a model-file key (or a slider-crank builder argument)
     range = { start = 1e-4, stop = 5e-4, num = 120 }   # or: values = [...]
     transient_revs = 100
     record_revs = 60
-    section_angle = 0.0         # crank angle of the section [deg]
+    section_angle = 0.0         # phase of the section [deg]
     samples_per_rev = 72
+    element = "pin"             # optional: default the model's first journal element
+    driver = "motor"            # optional: default the model's first angle driver
+    period = 0.03               # optional [s]: instead of the driver's 2π/ω
 """
 
 from __future__ import annotations
@@ -29,7 +33,17 @@ import numpy as np
 from jointdyn.core import atomic
 from jointdyn.studies.poincare import VARIABLES, section_arrays  # noqa: F401  (re-exported)
 
-_KEYS = {"parameter", "values", "range", "transient_revs", "record_revs", "section_angle", "samples_per_rev"}
+_SECTION = ("element", "driver", "period")
+_KEYS = {
+    "parameter",
+    "values",
+    "range",
+    "transient_revs",
+    "record_revs",
+    "section_angle",
+    "samples_per_rev",
+    *_SECTION,
+}
 
 
 @dataclass(frozen=True)
@@ -45,12 +59,14 @@ class BifurcationSpec:
     section_angle: float = 0.0
     samples_per_rev: int = 72
     scheduler: str | None = field(default=None, compare=False)
+    section: dict = field(default_factory=dict)
+    """optional ``element``, ``driver``, ``period`` [s] of the section (defaults: the model's)"""
 
     def __post_init__(self):
-        from jointdyn.studies.options import builder_args
+        from jointdyn.models.slider_crank_args import builder_args
 
         valid = list(builder_args())
-        if self.parameter not in valid:
+        if "file" not in self.base and self.parameter not in valid:  # model-file keys: its loader checks
             raise ValueError(
                 f"bifurcation.parameter = {self.parameter!r}: not a builder argument; valid: {valid}"
             )
@@ -94,8 +110,15 @@ def load_bifurcation(path) -> BifurcationSpec:
     else:
         values = tuple(float(v) for v in b["values"])
     base = dict(doc.get("base", {}))
-    if base.get("model", "slider-crank") != "slider-crank":
-        raise ValueError(f"{path}: [base] model = {base.get('model')!r}; only 'slider-crank' is supported")
+    if "file" in base:
+        f = (path.parent / str(base["file"])).resolve()
+        if not f.is_file():
+            raise ValueError(f"{path}: [base].file = {base['file']!r}: no such model file ({f})")
+        base["file"] = str(f)
+    elif base.get("model", "slider-crank") != "slider-crank":
+        raise ValueError(
+            f"{path}: [base] model = {base.get('model')!r}; valid: 'slider-crank', or file = \"FILE.toml\""
+        )
     return BifurcationSpec(
         base=base,
         parameter=b["parameter"],
@@ -105,6 +128,7 @@ def load_bifurcation(path) -> BifurcationSpec:
         section_angle=float(b.get("section_angle", 0.0)),
         samples_per_rev=int(b.get("samples_per_rev", 72)),
         scheduler=doc.get("dask", {}).get("scheduler"),
+        section={k: b[k] for k in _SECTION if k in b},
     )
 
 
@@ -123,6 +147,8 @@ def sweep_spec(spec: BifurcationSpec):
             "transient_revs": spec.transient_revs,
             "record_revs": spec.record_revs,
             "section_angle": spec.section_angle,
+            **{k: None for k in _SECTION},
+            **spec.section,
         }
     }
     return SweepSpec(
@@ -209,17 +235,6 @@ def to_dataset(spec: BifurcationSpec, results: list[dict]):
     return ds
 
 
-PARAM_UNITS = {
-    "speed": "rad/s",
-    "gravity": "m/s²",
-    "clearance": "m",
-    "viscosity": "Pa·s",
-    "length": "m",
-    "restitution": "-",
-    "asperity_height": "m",
-}
-
-
 def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> None:
     """Section values against the parameter (one dot per recorded revolution), and the median
     impacts per revolution."""
@@ -230,9 +245,10 @@ def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> 
 
     p = next(iter(ds[variable].dims))
     x = ds[p].values
-    scale, unit = (
-        (1e3, "mm") if p in ("clearance", "length", "asperity_height") else (1.0, PARAM_UNITS.get(p, ""))
-    )
+    from jointdyn.models.slider_crank_args import builder_args
+
+    unit = builder_args().get(p, (0.0, ds[p].attrs.get("units", "")))[1]  # a model-file key: its own
+    scale, unit = (1e3, "mm") if unit == "m" else (1.0, unit)
     if p == "speed":
         scale, unit = 60 / (2 * math.pi), "rpm"
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(8, 6.5), sharex=True, gridspec_kw={"height_ratios": [3, 1]})
@@ -240,7 +256,7 @@ def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> 
     xx = np.repeat(x[:, None], v.shape[1], axis=1)
     a1.plot((xx * scale).ravel(), v.ravel(), ",", color="k", alpha=0.6)
     a1.plot((xx * scale).ravel(), v.ravel(), ".", ms=1.2, color="k", alpha=0.4)
-    a1.set_ylabel(f"{variable} at crank angle {ds.attrs.get('section_angle_deg', 0):g}° [-]")
+    a1.set_ylabel(f"{variable} at phase {ds.attrs.get('section_angle_deg', 0):g}° [-]")
     a1.set_title(title or f"bifurcation diagram over {p}")
     imp = ds["impacts_per_rev"].values
     if np.isfinite(imp).any():

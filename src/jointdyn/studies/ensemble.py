@@ -38,19 +38,23 @@ UNITS = {
 def revolution_stats(
     res,
     transient_revs: int = 0,
-    element: str | None = "piston_pin",
-    driver: str = "drive",
-    body: str = "crank",
+    element: str | None = "",
+    driver: str | None = None,
 ) -> dict[str, np.ndarray]:
-    """Per-revolution quantities of a run whose output grid has samples at every crank angle
-    2πk (the shipped runs): peak, min and RMS driving moment [N·m] (RMS by the trapezoidal rule
-    over the revolution); for a journal ``element`` also impacts per revolution (from the
+    """Per-revolution quantities of a run whose output grid has samples at every angle 2πk of
+    its angle driver ``driver`` (default: the model's first; the shipped runs and
+    :func:`jointdyn.studies.period.per_revolution_config`): peak, min and RMS driving moment
+    [N·m] (RMS by the trapezoidal rule over the revolution); for a journal ``element`` (``""``:
+    the model's first, if it has one; None: none) also impacts per revolution (from the
     element's onset counter over accepted steps, exact) and the largest contact force [N] and
     penetration max(−h_min, 0) [m] over the output samples of the revolution (sample-limited).
     The first ``transient_revs`` revolutions are discarded."""
+    from jointdyn.studies import period as per
+
     if transient_revs < 0:
         raise ValueError(f"transient_revs = {transient_revs!r} [rev]: must be ≥ 0")
-    angle = res.coordinate(body, "phi")
+    driver = per.driver_name(res.system, driver)
+    angle = per.driver_angle(res, driver)
     b = stroboscopic_indices(angle, float(angle[0]))
     if b.size < transient_revs + 2:
         raise ValueError(
@@ -60,7 +64,15 @@ def revolution_stats(
     b = b[transient_revs:]
     m = post.driving_moment(res, driver)
     out = {k: [] for k in PER_REV}
-    has_el = element is not None and element in res.system.element_names
+    if element == "":
+        journals = per.journal_elements(res.system)
+        element = journals[0] if journals else None
+    elif element is not None:
+        element = per.journal(res.system, element)
+    has_el = (
+        element is not None
+        and "impacts" in type(res.system.elements[res.system.element_names.index(element)]).MEMORY
+    )
     if has_el:
         cnt = res.memory(element, "impacts")
         fc = res.element(element, "contact_force")
@@ -154,17 +166,96 @@ def perturbed_system(system, seed: int, scale: float = 1e-9):
     return dataclasses.replace(system, y0=y)
 
 
-def _run_case(joint: str, model_kw: dict, revs: int, transient_revs: int, rtol: float, seed: int, spr: int):
-    from jointdyn.models.slider_crank import SPEED, slider_crank
-    from jointdyn.simulation.simulate import simulate
-    from jointdyn.studies.runs import slider_crank_config
+def _system(model, model_kw: dict):
+    """(System, SimConfig) of an ensemble's model: a model file (``model_kw``: its overrides
+    ``{key: value}``) or a shipped model's builder arguments."""
+    import json
 
-    system = perturbed_system(slider_crank(joint, **model_kw).compile(), seed)
-    speed = float(model_kw.get("speed", SPEED))
-    cfg = slider_crank_config(joint, revs, samples_per_rev=spr, rtol=rtol, atol=rtol * 1e-3, speed=speed)
+    if str(model).endswith(".toml"):
+        from jointdyn.io.modelfile import load_system
+
+        _, system, cfg = load_system(model, [f"{k}={json.dumps(v)}" for k, v in model_kw.items()])
+        return system, cfg
+    from jointdyn.models.slider_crank import slider_crank, slider_crank_config
+
+    if model != "slider-crank":
+        raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
+    joint = model_kw.get("joint", "dry")
+    kw = {k: v for k, v in model_kw.items() if k != "joint"}
+    return slider_crank(joint, **kw).compile(), slider_crank_config(joint, 1.0)
+
+
+def _run_case(model, model_kw: dict, revs: int, transient_revs: int, rtol: float, seed: int, spr: int):
+    import dataclasses
+
+    from jointdyn.simulation.simulate import simulate
+    from jointdyn.studies.period import per_revolution_config
+
+    system, cfg = _system(model, model_kw)
+    system = perturbed_system(system, seed)
+    cfg = per_revolution_config(system, dataclasses.replace(cfg, rtol=rtol, atol=rtol * 1e-3), revs, spr)
     res = simulate(system, cfg)
-    el = "piston_pin" if "piston_pin" in system.element_names else None
-    return {k: v.tolist() for k, v in revolution_stats(res, transient_revs, el).items()}
+    return {k: v.tolist() for k, v in revolution_stats(res, transient_revs).items()}
+
+
+def ensemble(
+    model="slider-crank",
+    model_kw: dict | None = None,
+    rtols=(1e-7, 1e-8, 1e-9),
+    replicas: int = 1,
+    revs: int = 60,
+    transient_revs: int = 10,
+    samples_per_rev: int = 720,
+    workers: int | None = None,
+) -> dict:
+    """Distributions of the per-revolution quantities (:func:`revolution_stats`; revolutions of
+    the model's first angle driver) of a model file (``model_kw``: its overrides) or the shipped
+    slider-crank (``model_kw``: ``joint`` and builder arguments) over revolutions
+    ``transient_revs`` … ``revs`` of ``replicas`` runs per tolerance (replica r > 0 starts from a
+    seeded 1e-9 velocity perturbation; atol = 1e-3·rtol), run in parallel on local processes,
+    with the convergence check across tolerances (:func:`convergence`). Returns
+    ``{"bands": {quantity: band + convergence}, "per_rtol": {rtol: {quantity: band}}, "settings"}``.
+    """
+    from jointdyn.io.pool import run_local
+    from jointdyn.studies.period import driver_period
+
+    if replicas < 1:
+        raise ValueError(f"replicas = {replicas!r} [-]: must be ≥ 1")
+    if revs <= transient_revs:
+        raise ValueError(f"revs = {revs!r} [rev]: must exceed transient_revs = {transient_revs}")
+    model_kw = dict(model_kw or {})
+    driver_period(_system(model, model_kw)[0])  # one line before any work: the model has a revolution
+    cases = [(float(r), s) for r in rtols for s in range(replicas)]
+    args = [(model, model_kw, int(revs), int(transient_revs), r, s, int(samples_per_rev)) for r, s in cases]
+    if (workers or os.cpu_count() or 1) > 1 and len(cases) > 1:
+        out: dict[int, dict] = {}
+        run_local(_run_case, enumerate(args), workers, out.__setitem__)
+        results = [out[i] for i in range(len(args))]
+    else:
+        results = [_run_case(*a) for a in args]
+    groups: dict[str, dict[str, np.ndarray]] = {}
+    for (r, _), stats in zip(cases, results):
+        g = groups.setdefault(f"{r:g}", {})
+        for k, v in stats.items():
+            g[k] = np.concatenate([g.get(k, np.empty(0)), np.asarray(v, float)])
+    settings = (
+        {"model": str(model)} if str(model).endswith(".toml") else {"joint": model_kw.get("joint", "dry")}
+    )
+    return {
+        "bands": convergence(groups),
+        "per_rtol": {name: {k: band(v) for k, v in g.items()} for name, g in groups.items()},
+        "settings": settings
+        | {
+            "rtols": [float(r) for r in rtols],
+            "replicas": int(replicas),
+            "revs": int(revs),
+            "transient_revs": int(transient_revs),
+            "samples_per_rev": int(samples_per_rev),
+            "model_kw": {
+                k: v for k, v in model_kw.items() if isinstance(v, (int, float, str)) and k != "joint"
+            },
+        },
+    }
 
 
 def slider_crank_ensemble(
@@ -177,45 +268,10 @@ def slider_crank_ensemble(
     model_kw: dict | None = None,
     workers: int | None = None,
 ) -> dict:
-    """Distributions of the per-revolution quantities of the shipped slider-crank over
-    revolutions ``transient_revs`` … ``revs`` of ``replicas`` runs per tolerance (replica r > 0
-    starts from a seeded 1e-9 velocity perturbation; atol = 1e-3·rtol), run in parallel on local
-    processes, with the convergence check across tolerances (:func:`convergence`). Returns
-    ``{"bands": {quantity: band + convergence}, "per_rtol": {rtol: {quantity: band}}, "settings"}``.
-    """
-    from jointdyn.io.pool import run_local
-
-    if replicas < 1:
-        raise ValueError(f"replicas = {replicas!r} [-]: must be ≥ 1")
-    if revs <= transient_revs:
-        raise ValueError(f"revs = {revs!r} [rev]: must exceed transient_revs = {transient_revs}")
-    model_kw = dict(model_kw or {})
-    cases = [(float(r), s) for r in rtols for s in range(replicas)]
-    args = [(joint, model_kw, int(revs), int(transient_revs), r, s, int(samples_per_rev)) for r, s in cases]
-    if (workers or os.cpu_count() or 1) > 1 and len(cases) > 1:
-        out: dict[int, dict] = {}
-        run_local(_run_case, enumerate(args), workers, out.__setitem__)
-        results = [out[i] for i in range(len(args))]
-    else:
-        results = [_run_case(*a) for a in args]
-    groups: dict[str, dict[str, np.ndarray]] = {}
-    for (r, _), stats in zip(cases, results):
-        g = groups.setdefault(f"{r:g}", {})
-        for k, v in stats.items():
-            g[k] = np.concatenate([g.get(k, np.empty(0)), np.asarray(v, float)])
-    return {
-        "bands": convergence(groups),
-        "per_rtol": {name: {k: band(v) for k, v in g.items()} for name, g in groups.items()},
-        "settings": {
-            "joint": joint,
-            "rtols": [float(r) for r in rtols],
-            "replicas": int(replicas),
-            "revs": int(revs),
-            "transient_revs": int(transient_revs),
-            "samples_per_rev": int(samples_per_rev),
-            "model_kw": {k: v for k, v in model_kw.items() if isinstance(v, (int, float, str))},
-        },
-    }
+    """:func:`ensemble` of the shipped slider-crank with piston-pin ``joint`` and builder
+    arguments ``model_kw``."""
+    kw = {"joint": joint, **(model_kw or {})}
+    return ensemble("slider-crank", kw, rtols, replicas, revs, transient_revs, samples_per_rev, workers)
 
 
 def ensemble_table(result: dict) -> list[dict]:

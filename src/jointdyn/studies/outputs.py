@@ -18,7 +18,9 @@ import numpy as np
 
 from jointdyn import post
 from jointdyn.core import atomic, interrupts
-from jointdyn.core.constraints import CONSTRAINTS, AngleDriver
+from jointdyn.core.constraints import CONSTRAINTS
+from jointdyn.studies.metrics import metric_units, metrics
+from jointdyn.studies.period import angle_drivers, journal_elements
 
 _COORD_UNITS = {"x": "m", "y": "m", "phi": "rad"}
 #: multiplier units by constraint registry name (row order as in ``joints.constraints``)
@@ -65,42 +67,10 @@ def write_csv(path, cols: dict[str, np.ndarray], digits: int = 17) -> None:
                 interrupts.check()
 
 
-def drivers(system) -> list[str]:
-    """Names of the angle drivers (their λ is a driving moment)."""
-    return [n for n, c in zip(system.constraint_names, system.constraints) if isinstance(c, AngleDriver)]
-
-
-def journals(system) -> list[str]:
-    """Names of the elements with an orbit (declared outputs ``ex``, ``ey`` and a clearance)."""
-    return [
-        n
-        for n, e in zip(system.element_names, system.elements)
-        if {"ex", "ey"} <= set(type(e).OUTPUTS) and hasattr(e, "clearance")
-    ]
-
-
-def element_summary(res, name: str) -> dict:
-    """Per-element metrics from its declared outputs/memory: max ξ, min h_min, impacts,
-    max penetration, dissipated energy [SI]."""
-    el = res.system.elements[res.system.element_names.index(name)]
-    outs, mem = type(el).OUTPUTS, type(el).MEMORY
-    d: dict = {}
-    if "xi" in outs:
-        d["max_xi"] = float(np.max(res.element(name, "xi")))
-    if "h_min" in outs:
-        d["min_h_min"] = float(np.min(res.element(name, "h_min")))
-    if "impacts" in mem:
-        d["impacts"] = post.impacts(res, name)
-    if "max_penetration" in mem:
-        d["max_penetration"] = post.max_penetration(res, name)
-    if "power" in outs:
-        d["energy_dissipated"] = post.dissipated_energy(res, name)
-    return d
-
-
-def summary(res, status: str = "complete") -> dict:
-    """Model-independent summary: solver, statistics, drift, every driver's moment and every
-    element's metrics."""
+def summary(res, status: str = "complete", aliases: dict[str, str] | None = None) -> dict:
+    """Model-independent summary: solver, statistics, drift, and ``metrics`` (with their
+    ``metric_units``) of :func:`jointdyn.studies.metrics.metrics` (``aliases``: a shipped model's
+    short names of some metrics)."""
     out = {
         "model": res.system.name,
         "status": status,
@@ -116,8 +86,8 @@ def summary(res, status: str = "complete") -> dict:
         "max_drift_velocity": float(res.drift[:, 1].max()) if len(res.t) else math.nan,
     }
     if len(res.t):
-        out["drivers"] = {d: post.stats(post.driving_moment(res, d)) for d in drivers(res.system)}
-        out["elements"] = {n: element_summary(res, n) for n in res.system.element_names}
+        out["metrics"] = metrics(res, aliases)
+        out["metric_units"] = metric_units(res.system, aliases)
     return out
 
 
@@ -135,7 +105,7 @@ def figures(res, title: str) -> dict:
     s = res.system
     if len(res.t) < 2:
         return figs
-    ds = drivers(s)
+    ds = angle_drivers(s)
     if ds:
         c = s.constraints[s.constraint_names.index(ds[0])]
         angle = post.body_angle(res, c.body_j) if c.body_j != "ground" else res.t
@@ -144,7 +114,7 @@ def figures(res, title: str) -> dict:
         ax.set_title(title)
         fig.tight_layout()
         figs["moment.png"] = fig
-    js = journals(s)
+    js = journal_elements(s)
     if js:
         c = s.elements[s.element_names.index(js[0])].clearance
         fig, ax = plt.subplots(figsize=(5, 5))

@@ -1,4 +1,5 @@
-"""Poincaré sections of a run: stroboscopic at a crank angle, or a state-space plane crossing.
+"""Poincaré sections of a run: stroboscopic at a phase of an angle driver's revolution, or a
+state-space plane crossing.
 
 The section variables of a journal element are the journal's position relative to the bearing
 centre, e = P_j − P_i (world frame) [m], and its rate ė [m/s], both from the body coordinates
@@ -98,38 +99,52 @@ def plane_crossing(series: dict, key: str, level: float, t: np.ndarray, directio
     )
 
 
-def journal_series(res, element: str = "piston_pin", driver_body: str = "crank", omega: float | None = None):
-    """(series, crank angle) of a journal's relative state [T124]: ex/c, ey/c [-] and
-    ex_dot/(cω), ey_dot/(cω) [-] with ω the mean angular speed of ``driver_body`` [rad/s] unless
-    given."""
+def phase(res, driver: str | None = None, period: float | None = None) -> tuple[np.ndarray, float]:
+    """(phase angle [rad] at the samples, ω [rad/s]) of the revolution a study uses: the
+    relative angle of angle driver ``driver`` (default: the model's first) and its speed
+    [T7]; or, with an explicit ``period`` T [s], the phase 2π t/T and ω = 2π/T."""
+    from jointdyn.studies import period as per
+
+    if period is not None:
+        if not (math.isfinite(period) and period > 0):
+            raise ValueError(f"--period = {period!r} [s]: must be finite and > 0")
+        w = 2 * math.pi / period
+        return w * res.t, w
+    name = per.driver_name(res.system, driver)
+    return per.driver_angle(res, name), 2 * math.pi / per.driver_period(res.system, name)
+
+
+def journal_series(res, element: str, omega: float) -> dict[str, np.ndarray]:
+    """A journal's relative state [T124]: ex/c, ey/c [-] and ex_dot/(cω), ey_dot/(cω) [-] with
+    ω [rad/s] the speed of the revolution (:func:`phase`)."""
     st = journal_relative_state(res, element)
     c = st.pop("c")
-    angle = res.coordinate(driver_body, "phi")
-    w = omega if omega is not None else float((angle[-1] - angle[0]) / (res.t[-1] - res.t[0]))
-    if not (math.isfinite(w) and w != 0):
-        raise ValueError(f"omega = {w!r} [rad/s]: the driver body {driver_body!r} must rotate")
-    series = {
+    w = abs(omega)
+    return {
         "ex_over_c": st["ex"] / c,
         "ey_over_c": st["ey"] / c,
-        "exdot_over_cw": st["ex_dot"] / (c * abs(w)),
-        "eydot_over_cw": st["ey_dot"] / (c * abs(w)),
+        "exdot_over_cw": st["ex_dot"] / (c * w),
+        "eydot_over_cw": st["ey_dot"] / (c * w),
     }
-    return series, angle
 
 
 def journal_section(
     res,
-    element: str = "piston_pin",
-    driver_body: str = "crank",
+    element: str | None = None,
+    driver: str | None = None,
     section_angle: float = 0.0,
     transient: float = 0.0,
-    omega: float | None = None,
+    period: float | None = None,
     plane: tuple[str, float, int] | None = None,
 ) -> Section:
-    """Poincaré section of a journal's relative state (:func:`journal_series`) after
-    ``transient`` [s]: stroboscopic at crank angle ``section_angle`` [rad] [T122], or, with
+    """Poincaré section of a journal's relative state (:func:`journal_series`; ``element``
+    default: the model's first journal element) after ``transient`` [s]: stroboscopic at phase
+    ``section_angle`` [rad] of the revolution of :func:`phase` [T122], or, with
     ``plane = (variable, level, direction)``, where that variable crosses the level [T123]."""
-    series, angle = journal_series(res, element, driver_body, omega)
+    from jointdyn.studies.period import journal
+
+    angle, w = phase(res, driver, period)
+    series = journal_series(res, journal(res.system, element), w)
     keep = res.t >= transient - 1e-12
     series = {k: v[keep] for k, v in series.items()}
     if plane is not None:
@@ -179,18 +194,28 @@ def plot_sections(sections: dict, path, title: str = "") -> None:
 VARIABLES = ("ex_over_c", "ey_over_c", "exdot_over_cw", "eydot_over_cw")
 
 
-def section_arrays(res, transient_revs: int, record_revs: int, section_angle_deg: float) -> dict:
-    """Stroboscopic section of a slider-crank run's first journal element [T122]: the four
-    ``VARIABLES`` at crank angle ``section_angle_deg`` once per revolution for the
-    ``record_revs`` revolutions after ``transient_revs``, and ``impacts_per_rev`` (from the
-    element's onset counter) when it has contact memory. Lists of floats (JSON-ready)."""
-    angle = res.coordinate("crank", "phi")
-    speed = float(np.median(np.diff(angle) / np.diff(res.t)))
-    T = 2 * math.pi / abs(speed)
-    sec = journal_section(res, section_angle=math.radians(section_angle_deg), transient=transient_revs * T)
+def section_arrays(
+    res,
+    transient_revs: int,
+    record_revs: int,
+    section_angle_deg: float,
+    element: str | None = None,
+    driver: str | None = None,
+    period: float | None = None,
+) -> dict:
+    """Stroboscopic section of a run's journal element (default: its first) [T122]: the four
+    ``VARIABLES`` at phase ``section_angle_deg`` of the revolution (:func:`phase`) once per
+    revolution for the ``record_revs`` revolutions after ``transient_revs``, and
+    ``impacts_per_rev`` (from the element's onset counter) when it has contact memory. Lists of
+    floats (JSON-ready)."""
+    from jointdyn.studies.period import journal
+
+    el = journal(res.system, element)
+    angle, w = phase(res, driver, period)
+    T = 2 * math.pi / abs(w)
+    sec = journal_section(res, el, driver, math.radians(section_angle_deg), transient_revs * T, period=period)
     out = {k: np.asarray(sec.values[k])[:record_revs].tolist() for k in VARIABLES}
-    el = res.system.element_names[0] if res.system.element_names else None
-    if el is not None and "impacts" in type(res.system.elements[0]).MEMORY:
+    if "impacts" in type(res.system.elements[res.system.element_names.index(el)]).MEMORY:
         b = stroboscopic_indices(angle, float(angle[0]))[transient_revs : transient_revs + record_revs + 1]
         out["impacts_per_rev"] = np.diff(res.memory(el, "impacts")[b]).tolist()
     return out

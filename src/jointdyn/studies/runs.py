@@ -1,7 +1,8 @@
 """One path for every run: :func:`run` compiles a model once, simulates it, derives the output
 contract (:mod:`jointdyn.studies.outputs`) and writes it into a claimed directory. The CLI
 (``jointdyn run``, shipped model or model file), sweeps and the reproduction use it;
-:func:`run_slider_crank` adds the slider-crank's headline columns and summary.
+:func:`run_slider_crank` adds the slider-crank's headline columns and summary (defined in
+:mod:`jointdyn.models.slider_crank`).
 """
 
 from __future__ import annotations
@@ -11,70 +12,12 @@ from pathlib import Path
 
 import numpy as np
 
-from jointdyn import post
 from jointdyn.core import interrupts
 from jointdyn.errors import Interrupted, SimulationError
 from jointdyn.models import slider_crank as sc
 from jointdyn.models.slider_crank import slider_crank_config
 from jointdyn.simulation.simulate import SimConfig, simulate
 from jointdyn.studies import outputs
-
-#: units of the slider-crank's derived headline columns (element outputs take the element's own)
-SLIDER_CRANK_UNITS = {"crank_angle": "rad", "crank_moment": "N·m", "ex_over_c": "-", "ey_over_c": "-"}
-JOINT_ELEMENT = sc.PIN  # the joint under study
-
-
-def slider_crank_table(res, joint_element: str | None = None) -> dict[str, np.ndarray]:
-    """Time series of a slider-crank run: t [s], crank_angle [rad, unwrapped], crank_moment
-    [N·m] (the drive's moment on the crank, CCW positive), and for an imperfect piston pin
-    ex_over_c, ey_over_c [-], h_min [m], joint_force [N] (magnitude on the journal),
-    contact_force [N]."""
-    cols = {
-        "t": res.t,
-        "crank_angle": post.body_angle(res, "crank"),
-        "crank_moment": post.driving_moment(res, "drive"),
-    }
-    if joint_element is not None:
-        c = res.system.elements[res.system.element_names.index(joint_element)].clearance
-        cols["ex_over_c"] = res.element(joint_element, "ex") / c
-        cols["ey_over_c"] = res.element(joint_element, "ey") / c
-        cols["h_min"] = res.element(joint_element, "h_min")
-        cols["joint_force"] = np.hypot(res.element(joint_element, "Fx"), res.element(joint_element, "Fy"))
-        cols["contact_force"] = res.element(joint_element, "contact_force")
-    return cols
-
-
-def summarize(res, cols: dict, revs: float) -> dict:
-    """Summary metrics: moment statistics over the last revolution and the whole run."""
-    t_last = res.t[-1] - (res.t[-1] / revs if revs >= 1 else res.t[-1])
-    last = post.window(res, t_last)
-    m = cols["crank_moment"]
-    out = {
-        "joint": res.system.name,
-        "revolutions": revs,
-        "solver": res.config["solver"],
-        "rtol": res.config["rtol"],
-        "error_scale": res.config.get("error_scale", "state"),
-        "wall_time_s": res.wall_time,
-        **res.stats,
-        "max_drift_position": float(res.drift[:, 0].max()),
-        "max_drift_velocity": float(res.drift[:, 1].max()),
-    }
-    out.update({f"{k}_moment": v for k, v in post.stats(m[last]).items()})
-    out.update({f"{k}_moment_all": v for k, v in post.stats(m).items()})
-    if "ex_over_c" in cols:
-        el = JOINT_ELEMENT
-        xi = np.hypot(cols["ex_over_c"], cols["ey_over_c"])
-        out["max_xi"] = float(xi.max())
-        out["min_h_min"] = float(cols["h_min"].min())
-        in_contact = cols["contact_force"] > 0
-        dt = np.diff(res.t)
-        out["contact_time_s"] = float(np.sum(dt * 0.5 * (in_contact[1:] + in_contact[:-1])))
-        out["contact_fraction"] = out["contact_time_s"] / float(res.t[-1] - res.t[0])
-        out["max_contact_force"] = float(cols["contact_force"].max())
-        out["max_penetration"] = post.max_penetration(res, el)  # the continuous peak [T202]
-        out["impacts"] = post.impacts(res, el)
-    return out
 
 
 def _columns(res, headline: dict[str, np.ndarray], units: dict[str, str]) -> dict[str, np.ndarray]:
@@ -96,19 +39,21 @@ def run(
     title: str = "",
     files: dict[str, str] | None = None,
     meta: dict | None = None,
+    aliases: dict[str, str] | None = None,
 ):
     """Compile ``model`` (once), simulate it and, with ``out`` (a claimed
     :class:`~jointdyn.io.rundir.OutputDir`), write the output contract and the manifest.
 
     ``headline(res) -> ({name: array}, {name: unit})`` puts model-specific columns first;
-    ``extra_summary(res, headline_columns) -> dict`` adds model-specific metrics; ``files``
+    ``extra_summary(res, headline_columns, metrics) -> dict`` adds model-specific entries to the
+    summary (``metrics``: :func:`jointdyn.studies.metrics.metrics`, with the ``aliases``); ``files``
     are extra text files (name -> content, e.g. the resolved ``model.toml``); ``meta`` goes
     into ``Results.meta`` (provenance saved with the results). Returns
     ``(results, headline columns, summary)``. On a failure or interruption the partial results
     (if any) are written with their status and the error is re-raised.
     """
     system = model.compile() if hasattr(model, "compile") else model
-    from jointdyn.studies.options import check_memory
+    from jointdyn.studies.memory import check_memory
 
     check_memory(system, config.n_out)
 
@@ -124,13 +69,13 @@ def run(
             err.results.meta.update(meta or {})
         if out is not None:
             status = "interrupted" if isinstance(err, Interrupted) else "failed"
-            _write_partial(out, err, status, headline, title, files)
+            _write_partial(out, err, status, headline, title, files, aliases)
         raise
     res.meta.update(meta or {})
     head, units = headline(res) if headline else ({}, {})
-    summ = outputs.summary(res)
+    summ = outputs.summary(res, aliases=aliases)
     if extra_summary is not None:
-        summ.update(extra_summary(res, head))
+        summ.update(extra_summary(res, head, summ["metrics"]))
     if out is not None:
         try:
             _write(out, res, _columns(res, head, units), summ, title, files)
@@ -151,7 +96,7 @@ def _write(out, res, cols, summ, title, files) -> None:
     outputs.write_all(out, res, cols, summ, title)
 
 
-def _write_partial(out, err: SimulationError, status: str, headline, title, files) -> None:
+def _write_partial(out, err: SimulationError, status: str, headline, title, files, aliases) -> None:
     """Write what a failed or interrupted run computed, then the manifest with its status."""
     interrupts.acknowledge()  # a further signal stops this writing, not the first one
     res = err.results
@@ -161,21 +106,12 @@ def _write_partial(out, err: SimulationError, status: str, headline, title, file
             status = "partial" if status == "failed" else status  # something was computed
             res.meta["status"] = status
             head, units = headline(res) if headline else ({}, {})
-            summ = outputs.summary(res, status=status) | {"reason": reason}
+            summ = outputs.summary(res, status=status, aliases=aliases) | {"reason": reason}
             _write(out, res, _columns(res, head, units), summ, title + f" ({status})", files)
     except Exception as werr:  # the first error is the one to report
         reason += f"; writing the partial results failed too: {werr}"
     finally:
         out.finish(status, reason, t_reached=getattr(err, "t", None))
-
-
-def _slider_crank_headline(res):
-    el = JOINT_ELEMENT if JOINT_ELEMENT in res.system.element_names else None
-    units = dict(SLIDER_CRANK_UNITS)
-    if el is not None:  # h_min, contact_force: the element's declared units; |F| in those of Fx
-        outs = type(res.system.elements[res.system.element_names.index(el)]).OUTPUTS
-        units |= {"h_min": outs["h_min"], "contact_force": outs["contact_force"], "joint_force": outs["Fx"]}
-    return slider_crank_table(res, el), units
 
 
 def run_slider_crank(
@@ -192,7 +128,8 @@ def run_slider_crank(
     from jointdyn.io.rundir import OutputDir
 
     model = sc.slider_crank(joint, **(model_kw or {}))
-    cfg = slider_crank_config(joint, revs, **cfg_kw)
+    # revs count crank revolutions at the run's own speed
+    cfg = slider_crank_config(joint, revs, speed=(model_kw or {}).get("speed", sc.SPEED), **cfg_kw)
     if out is not None and not isinstance(out, OutputDir):
         spec = {"model": "slider-crank", "joint": joint, "revs": revs, **(model_kw or {}), **cfg_kw}
         spec = {k: v if isinstance(v, (int, float, str)) else repr(v) for k, v in spec.items()}
@@ -202,8 +139,9 @@ def run_slider_crank(
         cfg,
         out,
         progress=progress,
-        headline=_slider_crank_headline,
-        extra_summary=lambda res, cols: summarize(res, cols, revs),
+        headline=sc.headline,
+        extra_summary=lambda res, cols, metrics: sc.summarize(res, cols, metrics, revs),
+        aliases=sc.METRIC_ALIASES,
         title=f"slider-crank, {joint} piston pin",
     )
 

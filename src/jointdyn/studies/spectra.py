@@ -1,4 +1,4 @@
-"""Amplitude spectra of periodic-in-the-mean signals in harmonics of the crank speed [T130].
+"""Amplitude spectra of periodic-in-the-mean signals in harmonics of a driver's speed [T130].
 
 Over an integer number N of revolutions sampled at equal time steps, the discrete Fourier
 transform has its bins exactly at the harmonics k/N of the crank frequency (no leakage for a
@@ -34,15 +34,24 @@ def amplitude_spectrum(x: np.ndarray, revs: int) -> tuple[np.ndarray, np.ndarray
 def run_spectra(
     res,
     transient_revs: int = 0,
-    body: str = "crank",
-    driver: str = "drive",
-    slider: str = "slider",
-    element: str | None = "piston_pin",
+    driver: str | None = None,
+    slider: str | None = None,
+    element: str | None = "",
 ) -> dict:
-    """Spectra of the crank moment [N·m], the slider acceleration along x [m/s²] and the joint
-    force magnitude [N] (if ``element`` exists) over the complete revolutions after
-    ``transient_revs``. Returns {"harmonic": h, name: amplitude, "revs": N}."""
-    angle = res.coordinate(body, "phi")
+    """Spectra over the complete revolutions of angle driver ``driver`` (default: the model's
+    first) after ``transient_revs``: its moment (``crank_moment`` [N·m]), the x acceleration
+    of body ``slider`` [m/s²] if given, and the force magnitude of journal ``element`` [N]
+    (``""``: the model's first, if it has one; None: none). Returns {"harmonic": h, name:
+    amplitude, "revs": N}."""
+    from jointdyn.studies import period as per
+
+    driver = per.driver_name(res.system, driver)
+    if element == "":
+        journals = per.journal_elements(res.system)
+        element = journals[0] if journals else None
+    elif element is not None:
+        element = per.journal(res.system, element)
+    angle = per.driver_angle(res, driver)
     b = stroboscopic_indices(angle, float(angle[0]))
     if b.size < transient_revs + 2:
         raise ValueError(
@@ -55,9 +64,11 @@ def run_spectra(
     if dt.size and np.ptp(dt) > 1e-9 * dt.mean():
         raise ValueError("the output samples are not equally spaced in time; a spectrum needs a uniform grid")
     series = {"crank_moment": post.driving_moment(res, driver)[sl]}
-    if slider in res.system.body_names:
+    if slider is not None:
+        if slider not in res.system.body_names:
+            raise ValueError(f"--body {slider!r}: no such body; valid: {list(res.system.body_names)}")
         series["slider_acceleration"] = res.qdd[sl, 3 * res.system.body_index(slider)]
-    if element is not None and element in res.system.element_names:
+    if element is not None:
         series["joint_force"] = np.hypot(res.element(element, "Fx"), res.element(element, "Fy"))[sl]
     out: dict = {"revs": revs}
     for k, v in series.items():

@@ -40,10 +40,8 @@ import numpy as np
 from jointdyn.core import atomic, interrupts
 from jointdyn.core.atomic import OutputError
 from jointdyn.errors import Interrupted
-from jointdyn.studies import options
+from jointdyn.models import slider_crank_args as options
 from jointdyn.studies.sweep_spec import (
-    METRIC_UNITS,
-    METRICS,
     SweepSpec,
     latin_hypercube,
     load_sweep,
@@ -51,7 +49,6 @@ from jointdyn.studies.sweep_spec import (
 )
 
 __all__ = [
-    "METRICS",
     "SweepSpec",
     "latin_hypercube",
     "load_sweep",
@@ -62,31 +59,33 @@ __all__ = [
 ]
 
 
-def _metrics_of(summ: dict, element: str | None) -> dict:
-    """The sweep's ``METRICS`` of one case: the run's summary, completed by the metrics of the
-    element under study (see :func:`jointdyn.studies.outputs.element_summary`)."""
-    es = summ.get("elements", {}).get(element, {}) if element is not None else {}
-    return {k: summ[k] if k in summ else es[k] for k in METRICS if k in summ or k in es}
-
-
 def case_arrays(res, arrays: dict) -> dict[str, list[float]]:
     """Array outputs of one run (``[output.NAME]`` of the sweep file, ``ARRAY_OUTPUTS``):
-    ``poincare`` = the stroboscopic section of the first journal element [T122, T136]."""
+    ``poincare`` = the stroboscopic section of a journal element (default: the first) at a phase of
+    the revolution of an angle driver (default: the first) or of an explicit period [T122, T136]."""
     out = {}
     if "poincare" in arrays:
         from jointdyn.studies.poincare import section_arrays
 
         a = arrays["poincare"]
-        sec = section_arrays(res, int(a["transient_revs"]), int(a["record_revs"]), float(a["section_angle"]))
+        sec = section_arrays(
+            res,
+            int(a["transient_revs"]),
+            int(a["record_revs"]),
+            float(a["section_angle"]),
+            a.get("element"),
+            a.get("driver"),
+            a.get("period"),
+        )
         out |= {f"poincare_{k}": v for k, v in sec.items()}
     return out
 
 
 def run_case(base: dict, params: dict, series_path: str | None = None, arrays: dict | None = None) -> dict:
-    """Run one case (in a worker process) through :func:`jointdyn.studies.runs.run`; returns its
-    metrics, plus ``"arrays"`` (:func:`case_arrays`) when ``arrays`` asks for them. Never
-    raises: a failure is returned as ``{"error": message}``."""
-    from jointdyn.models import slider_crank as sc
+    """Run one case (in a worker process) through :func:`jointdyn.studies.runs.run`; returns
+    ``{"metrics": the run summary's metrics, "units": theirs, "rhs_evaluations", "wall_time_s"}``,
+    plus ``"arrays"`` (:func:`case_arrays`) when ``arrays`` asks for them. Never raises: a
+    failure is returned as ``{"error": message}``."""
     from jointdyn.studies import runs
 
     t0 = time.perf_counter()
@@ -95,32 +94,27 @@ def run_case(base: dict, params: dict, series_path: str | None = None, arrays: d
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")  # reported once at validation, not per case
             if "file" in merged:
-                from jointdyn.io.modelfile import load_system
+                from jointdyn.studies.sweep_spec import load_file_case
 
-                extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
-                overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
-                _, system, cfg = load_system(merged["file"], overrides)
+                _, system, cfg = load_file_case(merged)
                 res, _, summ = runs.run(system, cfg)
-                names = res.system.element_names
-                element = names[0] if names else None
             else:
-                from jointdyn.studies.options import joints
+                from jointdyn.models.slider_crank_args import joints
                 from jointdyn.studies.sweep_spec import slider_crank_call
 
                 # validate() refused arguments that act on no joint of the sweep; the rest that
                 # do not act on this case's joint are dropped here
                 joint, model_kw, run_kw, revs = slider_crank_call(merged, set(joints()))
                 res, _, summ = runs.run_slider_crank(joint, revs, model_kw=model_kw, **run_kw)
-                element = sc.PIN if sc.PIN in res.system.element_names else None
-        metrics = _metrics_of(summ, element)
         extra = {"arrays": case_arrays(res, arrays)} if arrays else {}
-        metrics["wall_time_s"] = time.perf_counter() - t0
         if series_path:
             with atomic.replacing(Path(series_path)) as tmp:
                 res.save(tmp)
         return {
-            k: (float(v) if isinstance(v, (int, float, np.floating, np.integer)) else v)
-            for k, v in metrics.items()
+            "metrics": summ["metrics"],
+            "units": summ["metric_units"],
+            "rhs_evaluations": int(res.stats["rhs_evaluations"]),
+            "wall_time_s": time.perf_counter() - t0,
         } | extra
     except Exception as err:  # recorded, the sweep goes on
         return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
@@ -279,14 +273,19 @@ def _local(spec, cases, todo, sp, workers, record) -> None:
 
 def gather(out: Path, spec: SweepSpec, cases: list[dict]):
     """Combine the per-case files into one Dataset (dims = grid parameters for pure grids;
-    string parameters such as ``joint`` stay strings)."""
+    string parameters such as ``joint`` stay strings). Its variables are the metrics that the
+    cases' models have (:func:`jointdyn.studies.metrics.metrics`), ``rhs_evaluations``,
+    ``wall_time_s`` and ``error``; a value is missing (NaN) only where its case failed or its
+    model lacks that metric (a sweep over joint kinds), never as a computed result."""
     import xarray as xr
 
     rows = [json.loads((out / "cases" / f"case_{i:05d}.json").read_text()) for i in range(len(cases))]
-    data = {
-        m: np.array([r.get(m, np.nan) if not isinstance(r.get(m), str) else np.nan for r in rows], float)
-        for m in METRICS
-    }
+    units: dict[str, str] = {"rhs_evaluations": "-", "wall_time_s": "s"}
+    for r in rows:
+        units |= r.get("units", {})
+    names = list(dict.fromkeys(k for r in rows for k in r.get("metrics", {})))
+    data = {m: np.array([r.get("metrics", {}).get(m, np.nan) for r in rows], float) for m in names}
+    data |= {m: np.array([r.get(m, np.nan) for r in rows], float) for m in ("rhs_evaluations", "wall_time_s")}
     errors = np.array([r.get("error", "") for r in rows], dtype=object)
     ds = xr.Dataset(
         {m: ("case", v) for m, v in data.items()} | {"error": ("case", errors.astype(str))},
@@ -314,7 +313,7 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
     if spec.grid and not spec.zipped and not spec.sample:
         keys = list(spec.grid)
         ds = ds.swap_dims(case=keys[0]) if len(keys) == 1 else ds.set_index(case=keys).unstack("case")
-    units = {k: u for k, (_, u) in options.builder_args().items()} | METRIC_UNITS
+    units |= {k: u for k, (_, u) in options.builder_args().items()}
     for name in ds.variables:
         if name in units:
             ds[name].attrs["units"] = units[name]

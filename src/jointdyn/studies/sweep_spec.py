@@ -17,25 +17,52 @@ import numpy as np
 
 from jointdyn.core.checks import check
 from jointdyn.io.modelfile.locate import read_toml
-from jointdyn.studies import options
+from jointdyn.models import slider_crank_args as options
 
-#: the per-case metrics of a sweep and their units (``sweep.nc`` variable attribute ``units``)
-METRIC_UNITS = {
-    "peak_moment": "N·m",
-    "min_moment": "N·m",
-    "rms_moment": "N·m",
-    "max_xi": "-",
-    "min_h_min": "m",
-    "impacts": "-",
-    "energy_dissipated": "J",
-    "wall_time_s": "s",
-    "rhs_evaluations": "-",
-}
-METRICS = tuple(METRIC_UNITS)
 TABLES = ("base", "grid", "zip", "sample", "output", "dask")
 #: array outputs a case can return besides its scalar metrics ([output.NAME] tables): name ->
 #: their keys and defaults (see :func:`jointdyn.studies.sweep.case_arrays`)
-ARRAY_OUTPUTS = {"poincare": {"transient_revs": 0, "record_revs": 1, "section_angle": 0.0}}
+ARRAY_OUTPUTS = {
+    "poincare": {
+        "transient_revs": 0,
+        "record_revs": 1,
+        "section_angle": 0.0,
+        "element": None,
+        "driver": None,
+        "period": None,
+    }
+}
+#: study keys of a model-file case besides its model-file keys: the run's length in revolutions
+#: of the model's first angle driver and the output samples per revolution
+FILE_RUN_KEYS = ("revs", "samples_per_rev")
+
+
+def file_call(merged: dict) -> tuple[str, list[str], dict]:
+    """``(model file, its overrides KEY=JSON, run keys)`` of one model-file case."""
+    import json
+
+    extra = {k: v for k, v in merged.items() if k not in ("file", "model", *FILE_RUN_KEYS)}
+    overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
+    return merged["file"], overrides, {k: merged[k] for k in FILE_RUN_KEYS if k in merged}
+
+
+def load_file_case(merged: dict, assemble: bool = True):
+    """``(model, system or None, config)`` of one model-file case: the file with the case's
+    overrides; with ``revs`` the run lasts that many revolutions of the model's angle driver at
+    ``samples_per_rev`` (default 720) samples each."""
+    from jointdyn.io.modelfile import load_model, load_system
+    from jointdyn.studies.period import per_revolution_config
+
+    path, overrides, rk = file_call(merged)
+    if not assemble:
+        model, cfg = load_model(path, overrides, assemble=False)
+        return model, None, cfg
+    model, system, cfg = load_system(path, overrides)
+    if rk:
+        if "revs" not in rk:
+            raise ValueError("samples_per_rev: acts only with revs (the run's length in revolutions)")
+        cfg = per_revolution_config(system, cfg, rk["revs"], rk.get("samples_per_rev", 720))
+    return model, system, cfg
 
 
 def model_args() -> tuple[str, ...]:
@@ -222,15 +249,8 @@ def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             try:
-                if "file" in merged:
-                    from jointdyn.io.modelfile import load_model
-
-                    extra = {k: v for k, v in merged.items() if k not in ("file", "model")}
-                    import json
-
-                    # values and names checked here; assembly once, in the case's run
-                    overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
-                    load_model(merged["file"], overrides, assemble=False)
+                if "file" in merged:  # values and names checked here; assembly once, in the run
+                    load_file_case(merged, assemble=False)
                 else:
                     slider_crank_call(merged, joints)
             except ValueError as err:

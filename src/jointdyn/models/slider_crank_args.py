@@ -2,7 +2,7 @@
 
 The argument names, defaults and units come from the builder's signature and docstring
 (:func:`jointdyn.models.slider_crank.slider_crank`) and the integration settings from
-:func:`jointdyn.studies.runs.slider_crank_config`; the joint kinds from the film-model registry. What
+:func:`jointdyn.models.slider_crank.slider_crank_config`; the joint kinds from the film-model registry. What
 is decided here is which argument acts on which joint kind, the allowed ranges and the
 plausibility bounds ([T140]). Every problem is one ``ValueError`` naming the option, its unit
 and the allowed range; implausible-but-possible values give a :class:`PhysicsWarning`.
@@ -11,8 +11,6 @@ and the allowed range; implausible-but-possible values give a :class:`PhysicsWar
 from __future__ import annotations
 
 import inspect
-import math
-import os
 import re
 import warnings
 
@@ -169,6 +167,12 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
     return kw
 
 
+def shipped_model(joint: str, given: dict, option_names: dict | None = None):
+    """The slider-crank :class:`~jointdyn.multibody.model.Model` with piston-pin ``joint`` and
+    the user's arguments ``given`` (checked by :func:`slider_crank_args`; SI)."""
+    return sc.slider_crank(joint, **slider_crank_args(joint, given, option_names))
+
+
 def _acts(name: str) -> str:
     kinds = [j for j in joints() if name in relevant(j)]
     lub = [j for j in kinds if j not in ("perfect", "dry")]
@@ -192,41 +196,3 @@ def check_run(revs, samples_per_rev, rtol=None, atol=None, names: dict | None = 
     for k, v in (("rtol", rtol), ("atol", atol)):
         if v is not None:
             check_value(k, v, "-", n.get(k))
-
-
-def available_memory() -> int:
-    """Bytes of memory available to a new allocation (MemAvailable, else physical memory)."""
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except OSError:  # pragma: no cover - not Linux
-        pass
-    return os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES")
-
-
-def _sizes(obj) -> tuple[int, int, int]:
-    """(coordinates, multiplier rows, per-sample element columns) of a Model or System."""
-    if hasattr(obj, "items") and hasattr(obj, "bodies"):  # a Model: count without compiling
-        items = list(obj.items.values())
-        n = 3 * len(obj.bodies)
-        m = sum(type(i).rows for i in items if hasattr(type(i), "rows"))
-        els = [i for i in items if hasattr(type(i), "OUTPUTS")]
-    else:
-        n, m, els = obj.n, sum(b - a for a, b in obj.constraint_rows), list(obj.elements)
-    return n, m, sum(len(type(e).OUTPUTS) + len(type(e).MEMORY) for e in els)
-
-
-def check_memory(model_or_system, n_out, what: str = "n_out") -> None:
-    """Refuse a run whose result arrays cannot fit: the estimate counts the time-first arrays
-    of :class:`~jointdyn.simulation.results.Results` (y, q̈, λ, element outputs and memory, drift) three
-    times (integrator chunks, concatenation, writing) [T141]."""
-    n, m, e = _sizes(model_or_system)
-    need = 3 * 8 * (3 * n + m + 2 + e) * float(n_out)
-    have = available_memory()
-    if not math.isfinite(need) or need > 0.8 * have:
-        raise ValueError(
-            f"{what}: {float(n_out):.6g} output samples need ≈ {need / 2**30:.3g} GiB of memory, "
-            f"{have / 2**30:.3g} GiB are available; lower the number of samples or the duration"
-        )
