@@ -1,7 +1,7 @@
 """Studies on any model file: a four-bar (lubricated crank pin, torsion spring on the rocker)
 written here, not shipped; metrics, sweeps and the per-revolution commands take it like the
-slider-crank. The film is ``alshaer2005`` (a film table with parameters cannot yet be
-reloaded from results.nc)."""
+slider-crank. The crank pin is a finite bearing with Reynolds' film end (a law given as a table
+with parameters, which results files now store and load back)."""
 
 import csv
 import json
@@ -82,7 +82,7 @@ bearing_radius = 0.00804
 journal_radius = 0.008
 length = 0.016
 viscosity = 0.05
-film = "alshaer2005"
+film = { law = "finite", cavitation = "reynolds" }
 
 [elements.spring]
 type = "torsion_spring"
@@ -225,7 +225,8 @@ def test_lyapunov_and_ensemble_count_the_model_files_revolutions(four_bar, tmp_p
     assert s["time_scale_s"] == 1 / OMEGA
     r = runner.invoke(
         app,
-        ["ensemble", str(four_bar), "--rtols", "1e-6", "--revs", "3", "--transient-revs", "1"]
+        # 5e-8: at 1e-6 the force-resolution guard refuses the finite film's force as noise [T111]
+        ["ensemble", str(four_bar), "--rtols", "5e-8", "--revs", "3", "--transient-revs", "1"]
         + ["--samples-per-rev", "72", "--workers", "1", "--out", str(tmp_path / "ens")],
     )
     assert r.exit_code == 0, r.output
