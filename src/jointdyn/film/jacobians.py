@@ -19,7 +19,7 @@ import math
 from numba import njit
 
 from jointdyn.film.finite import _catmull_rom
-from jointdyn.film.kernels import ALSHAER2005, FINITE, OTT, SHORT, _atan_y_over_y_minus_1
+from jointdyn.film.kernels import _atan_y_over_y_minus_1
 
 
 @njit(cache=True)
@@ -302,23 +302,26 @@ def finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     return res[0], res[1], res[2], res[3], res[4], res[5], res[6], res[7]
 
 
-@njit(cache=True)
-def film_jac(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
-    """Film force and Jacobian of model ``code`` (8-tuple, see module docstring); NaNs for a
-    code without an analytic Jacobian (callers fall back to finite differences) [T90]."""
-    if code == OTT:
-        return ott_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == ALSHAER2005:
-        return pi_film_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == SHORT:
-        return short_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == FINITE:
-        return finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    nan = math.nan
-    return nan, nan, nan, nan, nan, nan, nan, nan
-
-
-HAS_JACOBIAN = (OTT, ALSHAER2005, SHORT, FINITE)
-"""codes ``film_jac`` differentiates (the registry entries with a ``jacobian``, checked by the
-registry contract tests)"""
-"""film-model codes with an analytic Jacobian in :func:`film_jac`"""
+@njit
+def film_fd_jac(kernel, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    """The 8-tuple of :func:`pi_film_jac` for a film ``kernel`` without an exact Jacobian: its
+    forces and central differences [T230] (steps ε^{1/3} of ξ, floor 1e-3, kept inside
+    [0, (1 + ξ)/2], and ε^{1/3}·|(ξ̇, ξΩ)| for the rates; one-sided at ξ = 0)."""
+    fr, ft = kernel(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+    h = 6.055454452393343e-06 * max(xi, 1e-3)
+    lo = max(xi - h, 0.0)
+    hi = min(xi + h, 0.5 * (xi + 1.0))
+    frp, ftp = kernel(hi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+    frm, ftm = kernel(lo, xi_dot, xi_Omega, mu, R, L, c, p, table)
+    frx = (frp - frm) / (hi - lo)
+    ftx = (ftp - ftm) / (hi - lo)
+    s = 6.055454452393343e-06 * max(math.hypot(xi_dot, xi_Omega), 1e-300)
+    frp, ftp = kernel(xi, xi_dot + s, xi_Omega, mu, R, L, c, p, table)
+    frm, ftm = kernel(xi, xi_dot - s, xi_Omega, mu, R, L, c, p, table)
+    fra = (frp - frm) / (2.0 * s)
+    fta = (ftp - ftm) / (2.0 * s)
+    frp, ftp = kernel(xi, xi_dot, xi_Omega + s, mu, R, L, c, p, table)
+    frm, ftm = kernel(xi, xi_dot, xi_Omega - s, mu, R, L, c, p, table)
+    fro = (frp - frm) / (2.0 * s)
+    fto = (ftp - ftm) / (2.0 * s)
+    return fr, ft, frx, fra, fro, ftx, fta, fto
