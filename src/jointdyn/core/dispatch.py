@@ -1,4 +1,4 @@
-"""Type-level dispatch: compiled if-chains generated at typing time from a registry [T175, T230].
+"""Type-level dispatch: compiled if-chains generated at typing time from a registry [T175, T225].
 
 numba compiles everything a function can reach. A dispatch that chooses a kernel from a run-time
 code therefore compiles every registered kernel, and a hand-written chain does not know a kernel
@@ -104,44 +104,34 @@ def law_codes(laws, family: int, registry: Mapping) -> tuple[int, ...]:
     return tuple(c for c in sorted(by_code) if identity(by_code[c]) == 1)
 
 
-def law_switch(name: str, family: int, registry: Mapping, args: Sequence[str], call: Callable, default: str):
-    """A compiled ``name(laws, code, *args)``: ``return <call(cls)>`` for the law of ``registry``
-    (read at typing time) whose ``code`` matches, over the codes present in ``laws``
-    (:func:`law_codes`); ``default`` (an expression) for another code. ``call(cls)`` gives
-    (function, argument expression) for a law class; the token ``KERNEL`` in the expression is
-    the class's ``kernel`` (e.g. to difference it where it has no ``jacobian``)."""
+def law_switch(name: str, family: int, registry: Mapping, args: Sequence[str], fd: str | None, default: str):
+    """A compiled ``name(laws, code, *args)`` over the laws of ``registry`` (read at typing time)
+    present in ``laws`` (:func:`law_codes`): ``return kernel(*args)`` for the law whose ``code``
+    matches (``fd`` None), or ``return jacobian(*args)`` — for a law without a ``jacobian`` the
+    source lines ``fd`` (central differences of ``KERNEL``, the law's kernel, ending in a
+    return), written into the branch; ``default`` (an expression) for another code. Everything
+    is one generated function, so the compiled callers stay cacheable."""
     arglist = ", ".join(args)
 
     def build(laws):
         by_code = {cls.code: cls for cls in registry.values()}
         codes = law_codes(laws, family, registry)
         lines = [f"def {name}(laws, code, {arglist}):"]
-        ns = {"math": math}
+        ns: dict = {"math": math}
         for i, c in enumerate(codes):
-            fn, expr = call(by_code[c])
-            ns[f"_k{c}"] = fn
-            ns[f"_l{c}"] = by_code[c].kernel
-            expr = expr.replace("KERNEL", f"_l{c}")
+            cls = by_code[c]
             lines.append(f"    {'if' if i == 0 else 'elif'} code == {c}:")
-            lines.append(f"        return _k{c}({expr})")
+            fn = cls.kernel if fd is None else getattr(cls, "jacobian", None)
+            if fn is not None:
+                ns[f"_k{c}"] = fn
+                lines.append(f"        return _k{c}({arglist})")
+            else:
+                ns[f"_l{c}"] = cls.kernel
+                lines += ["        " + ln.replace("KERNEL", f"_l{c}") for ln in fd.strip().splitlines()]
         lines.append(f"    return {default}")
         return generated(name, lines, ns)
 
     return generated_overload(name, f"laws, code, {arglist}", build)
-
-
-def law_call(args: Sequence[str], fd: Callable | None = None) -> Callable:
-    """``call`` for :func:`law_switch`: a law's ``kernel`` (``fd`` None), else its ``jacobian``
-    or, for a law without one, ``fd(KERNEL, *args)`` (central differences of its kernel)."""
-    arglist = ", ".join(args)
-
-    def call(cls):
-        if fd is None:
-            return cls.kernel, arglist
-        jac = getattr(cls, "jacobian", None)
-        return (jac, arglist) if jac is not None else (fd, f"KERNEL, {arglist}")
-
-    return call
 
 
 def law_tuple(registry: Mapping, codes: Sequence[int]) -> tuple:

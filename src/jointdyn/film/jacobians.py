@@ -302,26 +302,24 @@ def finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     return res[0], res[1], res[2], res[3], res[4], res[5], res[6], res[7]
 
 
-@njit
-def film_fd_jac(kernel, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
-    """The 8-tuple of :func:`pi_film_jac` for a film ``kernel`` without an exact Jacobian: its
-    forces and central differences [T230] (steps ε^{1/3} of ξ, floor 1e-3, kept inside
-    [0, (1 + ξ)/2], and ε^{1/3}·|(ξ̇, ξΩ)| for the rates; one-sided at ξ = 0)."""
-    fr, ft = kernel(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    h = 6.055454452393343e-06 * max(xi, 1e-3)
-    lo = max(xi - h, 0.0)
-    hi = min(xi + h, 0.5 * (xi + 1.0))
-    frp, ftp = kernel(hi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    frm, ftm = kernel(lo, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    frx = (frp - frm) / (hi - lo)
-    ftx = (ftp - ftm) / (hi - lo)
-    s = 6.055454452393343e-06 * max(math.hypot(xi_dot, xi_Omega), 1e-300)
-    frp, ftp = kernel(xi, xi_dot + s, xi_Omega, mu, R, L, c, p, table)
-    frm, ftm = kernel(xi, xi_dot - s, xi_Omega, mu, R, L, c, p, table)
-    fra = (frp - frm) / (2.0 * s)
-    fta = (ftp - ftm) / (2.0 * s)
-    frp, ftp = kernel(xi, xi_dot, xi_Omega + s, mu, R, L, c, p, table)
-    frm, ftm = kernel(xi, xi_dot, xi_Omega - s, mu, R, L, c, p, table)
-    fro = (frp - frm) / (2.0 * s)
-    fto = (ftp - ftm) / (2.0 * s)
-    return fr, ft, frx, fra, fro, ftx, fta, fto
+FD_JAC = """
+fr, ft = KERNEL(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+h_ = 6.055454452393343e-06 * (1.0 - xi)
+lo_ = max(xi - h_, 0.0)
+hi_ = xi + h_
+frp_, ftp_ = KERNEL(hi_, xi_dot, xi_Omega, mu, R, L, c, p, table)
+frm_, ftm_ = KERNEL(lo_, xi_dot, xi_Omega, mu, R, L, c, p, table)
+frx_ = (frp_ - frm_) / (hi_ - lo_)
+ftx_ = (ftp_ - ftm_) / (hi_ - lo_)
+s_ = 6.055454452393343e-06 * max(math.hypot(xi_dot, xi_Omega), 1e-300)
+frp_, ftp_ = KERNEL(xi, xi_dot + s_, xi_Omega, mu, R, L, c, p, table)
+frm_, ftm_ = KERNEL(xi, xi_dot - s_, xi_Omega, mu, R, L, c, p, table)
+fra_ = (frp_ - frm_) / (2.0 * s_)
+fta_ = (ftp_ - ftm_) / (2.0 * s_)
+frp_, ftp_ = KERNEL(xi, xi_dot, xi_Omega + s_, mu, R, L, c, p, table)
+frm_, ftm_ = KERNEL(xi, xi_dot, xi_Omega - s_, mu, R, L, c, p, table)
+return fr, ft, frx_, fra_, (frp_ - frm_) / (2.0 * s_), ftx_, fta_, (ftp_ - ftm_) / (2.0 * s_)
+"""
+"""The 8-tuple of :func:`pi_film_jac` for a film ``KERNEL`` without an exact Jacobian, by central
+differences [T225] (steps ε^{1/3}·(1 − ξ) for ξ, the distance to the wall setting the scale,
+cut at ξ = 0, and ε^{1/3}·|(ξ̇, ξΩ)| for the rates): source lines for the generated dispatch."""

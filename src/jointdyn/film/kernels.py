@@ -2,7 +2,7 @@
 
 All kernels share one signature ``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft)``
 (arguments and conventions in :mod:`jointdyn.film.models`, theory docs/theory.md [T20–T39]); the
-registry with the dataclasses and the dispatch by code (generated from it [T230]) is
+registry with the dataclasses and the dispatch by code (generated from it [T225]) is
 :mod:`jointdyn.film.models`, the exact Jacobians are :mod:`jointdyn.film.jacobians`.
 """
 

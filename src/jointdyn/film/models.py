@@ -30,7 +30,7 @@ from typing import ClassVar
 import numpy as np
 from numba import njit
 
-from jointdyn.core.dispatch import all_laws, law_call, law_switch
+from jointdyn.core.dispatch import all_laws, law_switch
 from jointdyn.core.layout import block_width, check_codes, params_of
 from jointdyn.film import jacobians as _jac
 from jointdyn.film.finite import DEFAULT_CAVITATION, finite_force
@@ -237,7 +237,7 @@ def film_forces(
 # -- optional capability: exact Jacobians [T90–T97] ------------------------------------------------
 # ``jacobian(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft, ∂Fr/∂ξ, ∂Fr/∂ξ̇, ∂Fr/∂(ξΩ),
 # ∂Ft/∂ξ, ∂Ft/∂ξ̇, ∂Ft/∂(ξΩ))``; a model without one is differentiated by central differences of
-# its kernel in the compiled Jacobian (``film_fd_jac`` [T230]; ``simulate`` names it in a warning).
+# its kernel in the compiled Jacobian (``jacobians.FD_JAC`` [T225]; ``simulate`` names it in a warning).
 
 Ott.jacobian = _jac.ott_jac  # type: ignore[attr-defined]
 Alshaer2005.jacobian = _jac.pi_film_jac  # type: ignore[attr-defined]
@@ -245,9 +245,9 @@ Short.jacobian = _jac.short_jac  # type: ignore[attr-defined]
 Finite.jacobian = _jac.finite_jac  # type: ignore[attr-defined]
 
 
-# -- the dispatch by code, generated from FILM_MODELS when a caller is compiled [T230] -------------
+# -- the dispatch by code, generated from FILM_MODELS when a caller is compiled [T225] -------------
 _ARGS = ("xi", "xi_dot", "xi_Omega", "mu", "R", "L", "c", "p", "table")
-film_dispatch = law_switch("film_dispatch", 0, FILM_MODELS, _ARGS, law_call(_ARGS), "(math.nan, math.nan)")
+film_dispatch = law_switch("film_dispatch", 0, FILM_MODELS, _ARGS, None, "(math.nan, math.nan)")
 """compiled only: ``film_dispatch(laws, code, *args) -> (Fr, Ft)`` over the film models present in
 ``laws`` (the journal element's entry of the system's kinds); (nan, nan) for another code"""
 film_jac_dispatch = law_switch(
@@ -255,7 +255,7 @@ film_jac_dispatch = law_switch(
     0,
     FILM_MODELS,
     _ARGS,
-    law_call(_ARGS, _jac.film_fd_jac),
+    _jac.FD_JAC,
     "(" + "math.nan, " * 8 + ")",
 )
 """compiled only: the 8-tuple of ``jacobian`` (exact, or central differences of the kernel)"""
@@ -273,13 +273,13 @@ def _film_jac(laws, code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
 
 def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Film force (F_r, F_t) [N] of the model with registry code ``code`` through the compiled
-    dispatch over every registered model [T230]; (nan, nan) for an unknown code. Arguments as
+    dispatch over every registered model [T225]; (nan, nan) for an unknown code. Arguments as
     in the module docstring."""
     return _film_force(all_laws(FILM_MODELS, 0), code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
 
 
 def film_jac(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     """Film force and Jacobian (the 8-tuple of :mod:`jointdyn.film.jacobians`) of model ``code``:
-    its ``jacobian``, or central differences of its kernel for a model without one [T90, T230];
+    its ``jacobian``, or central differences of its kernel for a model without one [T90, T225];
     NaNs for an unknown code."""
     return _film_jac(all_laws(FILM_MODELS, 0), code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table)

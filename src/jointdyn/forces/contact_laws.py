@@ -6,7 +6,7 @@ Each law is a frozen dataclass (its fields are the model-file schema) registered
 slots): penetration δ [m] (> 0 in contact), its rate δ̇ [m/s], the rate at contact onset δ̇⁻
 [m/s]. Damped laws are clamped to F_n ≥ 0 (no adhesive pull while separating).
 The compiled dispatch by code is generated from the registry (``contact_dispatch``,
-``contact_jac_dispatch`` [T230]); ``contact_force(code, …)`` is its Python-level entry.
+``contact_jac_dispatch`` [T225]); ``contact_force(code, …)`` is its Python-level entry.
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ from typing import ClassVar
 
 from numba import njit
 
-from jointdyn.core.dispatch import all_laws, law_call, law_switch
+from jointdyn.core.dispatch import all_laws, law_switch
 from jointdyn.core.layout import Layout, block_width, check_codes, check_finite
 
 HERTZ, LANKARANI_NIKRAVESH, HUNT_CROSSLEY, FLORES, KELVIN_VOIGT = 0, 1, 2, 3, 4
@@ -190,7 +190,7 @@ def journal_bearing_stiffness(R_bearing, R_journal, E_bearing, nu_bearing, E_jou
 
 # -- optional capability: exact Jacobians [T96] ----------------------------------------------------
 # ``jacobian(delta, delta_dot, delta_dot0, p) -> (F, ∂F/∂δ, ∂F/∂δ̇)``; a law without one is
-# differentiated by central differences of its kernel (``contact_fd_jac`` [T230]).
+# differentiated by central differences of its kernel (``FD_JAC`` [T225]).
 
 
 @njit(cache=True)
@@ -250,25 +250,23 @@ Flores.jacobian = flores_jac  # type: ignore[attr-defined]
 KelvinVoigt.jacobian = kelvin_voigt_jac  # type: ignore[attr-defined]
 
 
-@njit
-def contact_fd_jac(kernel, delta, delta_dot, delta_dot0, p):
-    """(F, ∂F/∂δ, ∂F/∂δ̇) of a contact ``kernel`` without an exact Jacobian by central differences
-    [T230] (δ > 0; steps ε^{1/3}·δ and ε^{1/3}·max(|δ̇|, δ̇⁻))."""
-    f = kernel(delta, delta_dot, delta_dot0, p)
-    h = 6.055454452393343e-06 * delta
-    fd = (kernel(delta + h, delta_dot, delta_dot0, p) - kernel(delta - h, delta_dot, delta_dot0, p)) / (
-        2.0 * h
-    )
-    s = 6.055454452393343e-06 * max(abs(delta_dot), abs(delta_dot0))
-    fdd = (kernel(delta, delta_dot + s, delta_dot0, p) - kernel(delta, delta_dot - s, delta_dot0, p)) / (
-        2.0 * s
-    )
-    return f, fd, fdd
+FD_JAC = """
+f_ = KERNEL(delta, delta_dot, delta_dot0, p)
+h_ = 6.055454452393343e-06 * delta
+fp_ = KERNEL(delta + h_, delta_dot, delta_dot0, p)
+fm_ = KERNEL(delta - h_, delta_dot, delta_dot0, p)
+s_ = 6.055454452393343e-06 * max(abs(delta_dot), abs(delta_dot0))
+vp_ = KERNEL(delta, delta_dot + s_, delta_dot0, p)
+vm_ = KERNEL(delta, delta_dot - s_, delta_dot0, p)
+return f_, (fp_ - fm_) / (2.0 * h_), (vp_ - vm_) / (2.0 * s_)
+"""
+"""(F, ∂F/∂δ, ∂F/∂δ̇) of a contact ``KERNEL`` without an exact Jacobian by central differences
+[T225] (δ > 0; steps ε^{1/3}·δ and ε^{1/3}·max(|δ̇|, δ̇⁻)): source lines for the generated dispatch."""
 
 
-# -- the dispatch by code, generated from CONTACT_LAWS when a caller is compiled [T230] ------------
+# -- the dispatch by code, generated from CONTACT_LAWS when a caller is compiled [T225] ------------
 _ARGS = ("delta", "delta_dot", "delta_dot0", "p")
-contact_dispatch = law_switch("contact_dispatch", 1, CONTACT_LAWS, _ARGS, law_call(_ARGS), "math.nan")
+contact_dispatch = law_switch("contact_dispatch", 1, CONTACT_LAWS, _ARGS, None, "math.nan")
 """compiled only: ``contact_dispatch(laws, code, δ, δ̇, δ̇⁻, p) -> F_n`` over the laws present in
 ``laws`` (δ > 0: the caller tests contact); nan for another code"""
 contact_jac_dispatch = law_switch(
@@ -276,7 +274,7 @@ contact_jac_dispatch = law_switch(
     1,
     CONTACT_LAWS,
     _ARGS,
-    law_call(_ARGS, contact_fd_jac),
+    FD_JAC,
     "(math.nan, math.nan, math.nan)",
 )
 """compiled only: (F_n, ∂F_n/∂δ, ∂F_n/∂δ̇) from ``jacobian`` or central differences of the kernel"""
@@ -299,11 +297,11 @@ def _contact_jac(laws, code, delta, delta_dot, delta_dot0, p):
 def contact_force(code, delta, delta_dot, delta_dot0, p):
     """F_n ≥ 0 [N] of the law with registry code ``code`` (p: its ``PARAMS`` block) through the
     compiled dispatch over every registered law; 0 for δ ≤ 0, nan for an unknown code
-    [T50–T55, T230]."""
+    [T50–T55, T225]."""
     return _contact_force(all_laws(CONTACT_LAWS, 1), code, delta, delta_dot, delta_dot0, p)
 
 
 def contact_jac(code, delta, delta_dot, delta_dot0, p):
     """F_n and ∂F_n/∂(δ, δ̇) of the law ``code``: its ``jacobian``, or central differences of its
-    kernel; zeros for δ ≤ 0, NaNs for an unknown code [T96, T230]."""
+    kernel; zeros for δ ≤ 0, NaNs for an unknown code [T96, T225]."""
     return _contact_jac(all_laws(CONTACT_LAWS, 1), code, delta, delta_dot, delta_dot0, p)

@@ -3,7 +3,7 @@
 The journal element (film and/or contact) is differentiated through its kinematics by the chain
 rule over the 12 local variables z = (q_i, q_j, q̇_i, q̇_j) [T98]; spring–damper, torsional spring,
 harmonic torque and tabulated force in closed form [T118]; a law of a journal element without
-an exact Jacobian is differenced inside the element's Jacobian [T230]; an element without an
+an exact Jacobian is differenced inside the element's Jacobian [T225]; an element without an
 analytic Jacobian (a kind without a ``JACOBIAN_KERNELS`` entry, a spring at zero length, a journal
 at e = 0) is differentiated by central differences of its own contribution [T100], so every
 element is covered and the fallback is checked against the same references.
@@ -65,7 +65,7 @@ from jointdyn.forces.transfer import pair_jac, pair_rates
 def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     """∂(Q_i, Q_j)/∂z of one journal element into DQ (6, 12), z = (q_i, q_j, q̇_i, q̇_j) [T98],
     with the laws' exact Jacobians or, for a law without one, central differences of its kernel
-    [T230] (``laws`` as in ``journal_element``).
+    [T225] (``laws`` as in ``journal_element``).
 
     Returns 0, or 1 where the element is not differentiable analytically (e = 0): the caller
     then uses finite differences of the element."""
@@ -331,7 +331,7 @@ def fallback_elements(system) -> list[str]:
 
 def differenced_laws(system) -> list[str]:
     """``"element: family law"`` for each law of a journal element of a compiled system that has
-    no exact ``jacobian`` and is differenced by central differences of its kernel [T230]."""
+    no exact ``jacobian`` and is differenced by central differences of its kernel [T225]."""
     from jointdyn.film.models import film_model, film_name
 
     out = []

@@ -69,7 +69,7 @@ FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law (+ el
 # (t, q, q̇, k, mem, fint, freal, tables, Q, out) is registered as itself (k: the element's row of
 # the tables mem, fint, freal, out); a kernel with a signature of its own as (kernel, its argument
 # list), written in those names, the slot constants below and ``kind`` (the element's entry of
-# the kinds: for a journal element the laws it uses [T230]). A new element type registers its
+# the kinds: for a journal element the laws it uses [T225]). A new element type registers its
 # kernel here (and its class above).
 FORCE_KERNELS = {
     SPRING_DAMPER: (spring_damper, "q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k]"),
@@ -96,7 +96,7 @@ _force_loop = kind_loop(
 
 def journal_laws(fint: np.ndarray) -> tuple:
     """The laws of the journal rows of an element table as the type-level tuple (film, contact,
-    friction) of :func:`jointdyn.core.dispatch.law_tuple` [T230]."""
+    friction) of :func:`jointdyn.core.dispatch.law_tuple` [T225]."""
     rows = fint[fint[:, TYPE] == JOURNAL]
     return (
         law_tuple(FILM_MODELS, rows[:, FILM].tolist()),
@@ -108,7 +108,7 @@ def journal_laws(fint: np.ndarray) -> tuple:
 def kinds_of(fint: np.ndarray) -> tuple:
     """The ``kinds`` argument of :func:`eval_forces` for an element table: at each code it
     contains the kind's identity (for journal elements the laws they use), None elsewhere
-    [T175, T230]."""
+    [T175, T225]."""
     codes = fint[:, TYPE].tolist()
     ids = {c: identity(k[0] if isinstance(k, tuple) else k) for c, k in FORCE_KERNELS.items() if c in codes}
     if JOURNAL in codes:

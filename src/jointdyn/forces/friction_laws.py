@@ -4,7 +4,7 @@ Each law is a frozen dataclass registered with its integer ``code``, its compile
 ``kernel(vt, p) -> μ_eff`` and its ``PARAMS`` (fields packed, in order, into the block p): μ_eff
 carries the sign of the slip velocity v_t [m/s], so that the tangential force −μ_eff·F_n opposes
 slip. The compiled dispatch by code is generated from the registry (``friction_dispatch``,
-``friction_jac_dispatch`` [T230]); ``friction_coefficient(code, …)`` is its Python-level entry;
+``friction_jac_dispatch`` [T225]); ``friction_coefficient(code, …)`` is its Python-level entry;
 code −1 (``NONE``) is frictionless.
 """
 
@@ -16,7 +16,7 @@ from typing import ClassVar
 
 from numba import njit
 
-from jointdyn.core.dispatch import all_laws, law_call, law_switch
+from jointdyn.core.dispatch import all_laws, law_switch
 from jointdyn.core.layout import Layout, block_width, check_codes, check_finite
 
 COULOMB, AMBROSIO = 0, 1
@@ -104,7 +104,7 @@ A_MU, A_V0, A_V1 = Layout(Ambrosio.PARAMS).slots(*Ambrosio.PARAMS)
 
 # -- optional capability: exact Jacobians [T97] ----------------------------------------------------
 # ``jacobian(vt, p) -> (μ_eff, dμ_eff/dv_t)``; a law without one is differentiated by central
-# differences of its kernel (``friction_fd_jac`` [T230]).
+# differences of its kernel (``FD_JAC`` [T225]).
 
 
 @njit(cache=True)
@@ -135,18 +135,16 @@ Coulomb.jacobian = coulomb_jac  # type: ignore[attr-defined]
 Ambrosio.jacobian = ambrosio_jac  # type: ignore[attr-defined]
 
 
-@njit
-def friction_fd_jac(kernel, vt, p):
-    """(μ_eff, dμ_eff/dv_t) of a friction ``kernel`` without an exact Jacobian by central
-    differences [T230] (step ε^{1/3}·max(|v_t|, 1e-9 m/s))."""
-    h = 6.055454452393343e-06 * max(abs(vt), 1e-9)
-    return kernel(vt, p), (kernel(vt + h, p) - kernel(vt - h, p)) / (2.0 * h)
+FD_JAC = """
+h_ = 6.055454452393343e-06 * max(abs(vt), 1e-9)
+return KERNEL(vt, p), (KERNEL(vt + h_, p) - KERNEL(vt - h_, p)) / (2.0 * h_)
+"""
+"""(μ_eff, dμ_eff/dv_t) of a friction ``KERNEL`` without an exact Jacobian by central differences
+[T225] (step ε^{1/3}·max(|v_t|, 1e-9 m/s)): source lines for the generated dispatch."""
 
 
-# -- the dispatch by code, generated from FRICTION_LAWS when a caller is compiled [T230] -----------
-friction_dispatch = law_switch(
-    "friction_dispatch", 2, FRICTION_LAWS, ("vt", "p"), law_call(("vt", "p")), "math.nan"
-)
+# -- the dispatch by code, generated from FRICTION_LAWS when a caller is compiled [T225] -----------
+friction_dispatch = law_switch("friction_dispatch", 2, FRICTION_LAWS, ("vt", "p"), None, "math.nan")
 """compiled only: ``friction_dispatch(laws, code, v_t, p) -> μ_eff`` over the laws present in
 ``laws``; nan for another code (the caller skips ``NONE``)"""
 friction_jac_dispatch = law_switch(
@@ -154,7 +152,7 @@ friction_jac_dispatch = law_switch(
     2,
     FRICTION_LAWS,
     ("vt", "p"),
-    law_call(("vt", "p"), friction_fd_jac),
+    FD_JAC,
     "(math.nan, math.nan)",
 )
 """compiled only: (μ_eff, dμ_eff/dv_t) from ``jacobian`` or central differences of the kernel"""
@@ -177,11 +175,11 @@ def _friction_jac(laws, code, vt, p):
 def friction_coefficient(code, vt, p):
     """μ_eff(v_t) [-] of the law with registry code ``code`` (p: its ``PARAMS`` block) through the
     compiled dispatch over every registered law; 0 for ``NONE``, nan for an unknown code
-    [T60–T62, T230]."""
+    [T60–T62, T225]."""
     return _friction_coefficient(all_laws(FRICTION_LAWS, 2), code, vt, p)
 
 
 def friction_jac(code, vt, p):
     """μ_eff(v_t) and dμ_eff/dv_t of the law ``code``: its ``jacobian``, or central differences of
-    its kernel; (0, 0) for ``NONE``, NaNs for an unknown code [T97, T230]."""
+    its kernel; (0, 0) for ``NONE``, NaNs for an unknown code [T97, T225]."""
     return _friction_jac(all_laws(FRICTION_LAWS, 2), code, vt, p)

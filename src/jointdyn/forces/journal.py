@@ -305,7 +305,7 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
     """Film and/or contact forces of one journal element into Q [T14–T16]; fills ``out``
     (``OUTPUTS``). ξ ≥ 1 probed with no contact law is evaluated guarded at ξ = 1 − 1e-9 (film
     breakdown is reported on accepted steps by ``elements.advance_memory``). ``laws``: the film,
-    contact and friction laws compiled into the dispatch (the element's entry of the kinds) [T230]."""
+    contact and friction laws compiled into the dispatch (the element's entry of the kinds) [T225]."""
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = math.sqrt(ex * ex + ey * ey)

@@ -7,7 +7,7 @@ models and contact laws, tables, springs, torsion) for every model, a perfect jo
 Here the set of kinds a system contains is carried in the *type* of an argument: ``kinds`` is a
 tuple with one entry per code 0 … max code, an identity where the system has an element of that
 code (``1`` for a kind of this package; a plugin's hash, or a journal element's own tuple of the
-film, contact and friction laws it uses [T230], see :mod:`jointdyn.core.dispatch`) and ``None``
+film, contact and friction laws it uses [T225], see :mod:`jointdyn.core.dispatch`) and ``None``
 where it has none (numba types it as e.g. ``Tuple(none, int64, none, …)``). The
 functions made here — :func:`kind_loop` (the loop over the elements), :func:`kind_switch` (one
 element) and :func:`kind_gate` (a hook of one kind) — are numba ``@overload`` functions, inlined into
@@ -15,7 +15,7 @@ their caller, whose code is generated at typing time: an ``if typ == code: kerne
 over the present codes only. The absent kinds are never typed, lowered or optimised.
 ``kinds=None`` (or omitted) means every registered kind (and, for the laws, every built-in law).
 The machinery (generated ``@overload`` functions) is :mod:`jointdyn.core.dispatch`, shared with
-the law dispatch of the film models, contact and friction laws [T230].
+the law dispatch of the film models, contact and friction laws [T225].
 
 The compiled callers keep ``cache=True``: the kinds tuple type is part of their signature, so
 numba's on-disk cache holds one specialisation per combination of kinds (the trade-off: a model

@@ -276,7 +276,7 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
         if laws:
             warnings.warn(
                 f"jacobian='exact': no exact Jacobian for {laws}; differenced by central differences of "
-                "the kernel [T230]",
+                "the kernel [T225]",
                 stacklevel=3,
             )
     ysc, rtol = None, config.rtol
