@@ -6,7 +6,6 @@ import os
 import subprocess
 import sys
 import textwrap
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -101,13 +100,13 @@ KINDS_CHILD = textwrap.dedent(
 
 
 def test_kinds_tuple_marks_the_codes_present():
-    from jointdyn.forces.elements import FORCE_KERNELS, kinds_of
+    from jointdyn.forces.elements import FORCE_KERNELS, NINT, kinds_of
     from jointdyn.forces.journal import JOURNAL
     from jointdyn.forces.springs import SPRING_DAMPER
 
     # every registered element type has a compiled kernel for the dispatch
     assert {cls.code for cls in FORCE_ELEMENTS.values()} <= set(FORCE_KERNELS)
-    fint = np.zeros((3, 4), dtype=np.int64)
+    fint = np.zeros((3, NINT), dtype=np.int64)
     fint[:, 0] = [JOURNAL, SPRING_DAMPER, JOURNAL]
     k = kinds_of(fint)
     assert len(k) == max(FORCE_KERNELS) + 1
@@ -181,40 +180,3 @@ def test_kind_specialisation_gives_the_same_forces_as_all_kinds(name):
         np.testing.assert_array_equal(Q1, Q2)
         np.testing.assert_array_equal(o1, o2)
     assert acts  # the element acts at some of these states: the comparison is not of zeros
-
-
-HOW_TO = Path(__file__).resolve().parents[1] / "docs" / "how-to-add-a-model.md"
-HOW_TO_RUN = textwrap.dedent(
-    """
-    import json, sys
-    sys.path.insert(0, sys.argv[2])
-    from plugin_torque import ConstantTorque  # the how-to's code block, literally, as a module
-    from jointdyn.multibody.model import Model
-    from jointdyn.simulation.simulate import SimConfig, simulate
-    m = Model("free body", gravity=(0.0, 0.0))
-    m.add_body("b", 2.0, 0.5, position=(0.0, 0.0))
-    m.add("motor", ConstantTorque("b", moment=3.0))
-    res = simulate(m.compile(), SimConfig(t_end=2.0, n_out=5, solver=sys.argv[1], rtol=1e-10, atol=1e-12))
-    print(json.dumps([res.t.tolist(), res.y[:, 2].tolist(), res.eout[:, 0, :2].tolist()]))
-    """
-)
-
-
-@pytest.mark.parametrize("solver", ["dopri5", pytest.param("radau5", marks=pytest.mark.slow)])
-def test_how_to_force_element(solver, tmp_path):
-    """The how-to's new element type, registered in a fresh process exactly as written there,
-    runs in a model: a free body (J = 0.5 kg·m²) under M = 3 N·m turns by φ = M t²/(2J). radau5
-    differentiates it by the finite-difference fallback (no exact Jacobian registered)."""
-    text = HOW_TO.read_text(encoding="utf-8")
-    section = text[text.index("## A force element type") :]
-    code = section[section.index("```python\n") + 10 : section.index("\n```\n")]
-    (tmp_path / "plugin_torque.py").write_text(code, encoding="utf-8")
-    p = subprocess.run(
-        [sys.executable, "-c", HOW_TO_RUN, solver, str(tmp_path)], capture_output=True, text=True, check=True
-    )
-    t, phi, out = (np.array(v) for v in json.loads(p.stdout.strip().splitlines()[-1]))
-    # both methods integrate a quadratic in t exactly up to rounding and the step-size control:
-    # 1e-9 relative is 10× the rtol of the run (1e-10)
-    np.testing.assert_allclose(phi, 3.0 * t**2 / (2 * 0.5), rtol=1e-9, atol=1e-12)
-    np.testing.assert_array_equal(out[:, 0], 3.0)  # output column "moment"
-    np.testing.assert_allclose(out[:, 1], 3.0 * 3.0 * t / 0.5, rtol=1e-9)  # power M·ω, ω = M t / J

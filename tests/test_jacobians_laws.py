@@ -11,8 +11,7 @@ from fd_reference import central, one_sided
 
 from jointdyn.core.layout import params_of
 from jointdyn.film.finite import build_table
-from jointdyn.film.jacobians import film_jac
-from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force
+from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force, film_jac
 from jointdyn.forces.contact_laws import CONTACT_LAWS, contact_force, contact_jac
 from jointdyn.forces.friction_laws import FRICTION_LAWS, friction_coefficient, friction_jac
 

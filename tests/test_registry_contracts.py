@@ -12,18 +12,21 @@ from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 import pytest
+from numba import njit
 
 from jointdyn.core.constraints import CONSTRAINTS, constraint_table, eval_constraints
 from jointdyn.core.layout import params_of
 from jointdyn.errors import PhysicsWarning
-from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force
-from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_force
+from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force, film_jac, pi_film_force
+from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_force, contact_jac
 from jointdyn.forces.elements import FORCE_ELEMENTS, NINT, NMEM, NOUT, NREAL, eval_forces
-from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient
-from jointdyn.forces.journal import JournalBearing
+from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient, friction_jac
+from jointdyn.forces.journal import ClearanceJoint, JournalBearing
 from jointdyn.integrators import SOLVERS
 from jointdyn.multibody.model import Model
 from jointdyn.simulation.simulate import SimConfig, simulate
@@ -339,33 +342,83 @@ def test_solver_integrates_a_pendulum(name):
 
 
 # ------------------------------------------------------------------------ jacobians (optional)
-def test_exact_jacobians_are_declared_where_the_system_jacobian_uses_them():
-    """A film model with a ``jacobian`` is differentiated exactly in the system Jacobian, one
-    without falls back to finite differences: the two lists must be the same."""
-    from jointdyn.film.jacobians import HAS_JACOBIAN
+# Laws registered from this file (plugins, no ``jacobian``): the compiled dispatch includes them
+# and differences their kernels [T229]; they run through every Jacobian contract below.
+@njit(cache=True)
+def _plugin_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    fr, ft = pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+    return 1.5 * fr, 1.5 * ft
 
-    declared = {cls.code for cls in FILM_MODELS.values() if getattr(cls, "jacobian", None) is not None}
-    assert declared == set(HAS_JACOBIAN)
+
+@njit(cache=True)
+def _plugin_contact_force(delta, delta_dot, delta_dot0, p):
+    f = p[0] * delta**1.5 * (1.0 + 0.3 * delta_dot / delta_dot0)  # Hunt–Crossley-like, χ = 0.3
+    return f if f > 0.0 else 0.0
+
+
+@njit(cache=True)
+def _plugin_friction(vt, p):
+    return p[0] * vt / math.sqrt(vt * vt + 1e-8)  # μ v/√(v² + v_reg²), v_reg = 1e-4 m/s
+
+
+@dataclass(frozen=True)
+class PluginFilm:
+    code: ClassVar[int] = max(c.code for c in FILM_MODELS.values()) + 1
+    kernel: ClassVar = _plugin_film_force
+    tag: ClassVar[str] = "T21"
+    PARAMS: ClassVar[tuple[str, ...]] = ()
+
+
+@dataclass(frozen=True)
+class PluginContact:
+    stiffness: float = 6.9e10
+    code: ClassVar[int] = max(c.code for c in CONTACT_LAWS.values()) + 1
+    kernel: ClassVar = _plugin_contact_force
+    PARAMS: ClassVar[tuple[str, ...]] = ("stiffness",)
+
+    @classmethod
+    def example(cls):
+        return cls()
+
+
+@dataclass(frozen=True)
+class PluginFriction:
+    coefficient: float = 0.1
+    code: ClassVar[int] = max(c.code for c in FRICTION_LAWS.values()) + 1
+    kernel: ClassVar = _plugin_friction
+    PARAMS: ClassVar[tuple[str, ...]] = ("coefficient",)
+
+    @classmethod
+    def example(cls):
+        return cls()
+
+
+@pytest.fixture()
+def plugins(monkeypatch):
+    """The three plugin laws registered for one test (removed after it)."""
+    monkeypatch.setitem(FILM_MODELS, "plugin_film", PluginFilm)
+    monkeypatch.setitem(CONTACT_LAWS, "plugin_contact", PluginContact)
+    monkeypatch.setitem(FRICTION_LAWS, "plugin_friction", PluginFriction)
 
 
 def _central(f, x, h):
     return (np.array(f(x + h)) - np.array(f(x - h))) / (2 * h)
 
 
-@pytest.mark.parametrize("name", [n for n, c in FILM_MODELS.items() if getattr(c, "jacobian", None)])
-def test_film_jacobian_contract(name):
-    """Forces bit-identical to the kernel; derivatives = central differences at interior states
-    (h = 1e-6 of the scale: truncation ~1e-12, round-off ~1e-10 relative; bound 1e-6 of the
-    row's scale, the issue's criterion)."""
-    from jointdyn.film.jacobians import film_jac
-
+@pytest.mark.parametrize("name", [*FILM_MODELS, "plugin_film"])
+def test_film_jacobian_contract(name, plugins):
+    """The compiled Jacobian path of every film model (its ``jacobian``, or central differences
+    of its kernel [T229]): forces bit-identical to the kernel; derivatives = central differences
+    at interior states (h = 1e-6 of the scale: truncation ~1e-12, round-off ~1e-10 relative;
+    bound 1e-6 of the row's scale, the issue's criterion)."""
     m, p, tab = _film(name)
-    jac = type(m).jacobian
+    jac = getattr(type(m), "jacobian", None)
     rng = np.random.default_rng(9)
     for xi, a, b in zip(*_states(rng, 60, xi_max=0.9)):
         args = (MU, R, L, C, p, tab)
-        J = jac(xi, a, b, *args)
-        assert J[:2] == film_force(m.code, xi, a, b, *args) and J == film_jac(m.code, xi, a, b, *args)
+        J = film_jac(m.code, xi, a, b, *args)
+        assert J[:2] == film_force(m.code, xi, a, b, *args) == type(m).kernel(xi, a, b, *args)
+        assert jac is None or J == jac(xi, a, b, *args)
         dxi = _central(lambda x: film_force(m.code, x, a, b, *args), xi, 1e-6)
         da = _central(lambda x: film_force(m.code, xi, x, b, *args), a, 1e-6 * math.hypot(a, b))
         db = _central(lambda x: film_force(m.code, xi, a, x, *args), b, 1e-6 * math.hypot(a, b))
@@ -378,16 +431,18 @@ def test_film_jacobian_contract(name):
         )
 
 
-@pytest.mark.parametrize("name", [n for n, c in CONTACT_LAWS.items() if getattr(c, "jacobian", None)])
-def test_contact_jacobian_contract(name):
+@pytest.mark.parametrize("name", [*CONTACT_LAWS, "plugin_contact"])
+def test_contact_jacobian_contract(name, plugins):
     law = CONTACT_LAWS[name].example()
+    jac = getattr(type(law), "jacobian", None)
     p = np.zeros(CONTACT_WIDTH)
     p[: len(law.PARAMS)] = params_of(law)
     rng = np.random.default_rng(10)
     for _ in range(60):
         d, v, v0 = 10.0 ** rng.uniform(-7, -5), 10.0 ** rng.uniform(-2, 0), 10.0 ** rng.uniform(-1, 0)
-        F, dd, dv = type(law).jacobian(d, v, v0, p)
-        assert F == contact_force(law.code, d, v, v0, p)
+        F, dd, dv = contact_jac(law.code, d, v, v0, p)
+        assert F == contact_force(law.code, d, v, v0, p) == type(law).kernel(d, v, v0, p)
+        assert jac is None or (F, dd, dv) == jac(d, v, v0, p)
         fd_d = _central(lambda x: contact_force(law.code, x, v, v0, p), d, 1e-6 * d)
         fd_v = _central(lambda x: contact_force(law.code, d, x, v0, p), v, 1e-6 * v)
         # central differences at h = 1e-6 of the argument: ~1e-10 relative
@@ -395,14 +450,16 @@ def test_contact_jacobian_contract(name):
         assert abs(dv - fd_v) <= 1e-6 * abs(fd_v) + 1e-9 * abs(F) / v
 
 
-@pytest.mark.parametrize("name", [n for n, c in FRICTION_LAWS.items() if getattr(c, "jacobian", None)])
-def test_friction_jacobian_contract(name):
+@pytest.mark.parametrize("name", [*FRICTION_LAWS, "plugin_friction"])
+def test_friction_jacobian_contract(name, plugins):
     law = FRICTION_LAWS[name].example()
+    jac = getattr(type(law), "jacobian", None)
     p = np.zeros(FRICTION_WIDTH)
     p[: len(law.PARAMS)] = params_of(law)
     for vt in np.concatenate([-np.logspace(-5, 0, 20), np.logspace(-5, 0, 20)]):
-        mu, dmu = type(law).jacobian(vt, p)
-        assert mu == friction_coefficient(law.code, vt, p)
+        mu, dmu = friction_jac(law.code, vt, p)
+        assert mu == friction_coefficient(law.code, vt, p) == type(law).kernel(vt, p)
+        assert jac is None or (mu, dmu) == jac(vt, p)
         h = 1e-7 * abs(vt)
         fd = (friction_coefficient(law.code, vt + h, p) - friction_coefficient(law.code, vt - h, p)) / (2 * h)
         assert abs(dmu - fd) <= 1e-5 * abs(fd) + 1e-6 * law.coefficient / abs(vt)
@@ -414,11 +471,38 @@ def test_element_jacobian_contract(label, element):
     """Every registered element has a Jacobian in ``force_jacobian`` (exact [T98, T118] or the
     finite-difference fallback [T100]) that matches central differences [T95] of its own force,
     and ``fallback_elements`` names it exactly when it takes the fallback."""
+    _check_element_jacobian(label, element)
+
+
+@pytest.mark.parametrize("which", ["film", "contact", "friction"])
+def test_plugin_law_element_jacobian(which, plugins):
+    """A journal element with a plugin law (no ``jacobian``): the system Jacobian, with the law
+    differenced inside the element's exact Jacobian [T229], matches central differences of the
+    element's force, with the system's kinds (the plugin in the type) and without fallback."""
+    from jointdyn.forces.element_jacobians import differenced_laws
+
+    if which == "film":
+        element, named = JournalBearing.example(film=PluginFilm()), ["el: film model plugin_film"]
+    elif which == "contact":
+        element, named = (
+            ClearanceJoint("a", "A", "b", "B", 0.0105, 0.01, PluginContact()),
+            ["el: contact law PluginContact"],
+        )
+    else:
+        element = ClearanceJoint("a", "A", "b", "B", 0.0105, 0.01, PluginContact(), PluginFriction())
+        named = ["el: contact law PluginContact", "el: friction law PluginFriction"]
+    assert differenced_laws(_compiled(element)) == named  # the warning of ``simulate`` names them
+    _check_element_jacobian(f"plugin {which}", element)
+
+
+def _check_element_jacobian(label, element):
     from fd_reference import central
 
     from jointdyn.forces.element_jacobians import fallback_elements, force_jacobian
+    from jointdyn.forces.elements import kinds_of
 
     sysm = _compiled(element)
+    kinds = kinds_of(sysm.fint)
     mem = np.zeros((1, NMEM))
     if "onset_velocity" in type(element).MEMORY:  # as in _forces: in contact since a fast onset
         mem[0, list(type(element).MEMORY).index("in_contact")] = 1.0
@@ -429,13 +513,13 @@ def test_element_jacobian_contract(label, element):
     for _ in range(8):
         q, qd = _random_state(rng, element)
         dq, dqd, dt = np.empty((6, 6)), np.empty((6, 6)), np.empty(6)
-        n_fd = force_jacobian(t, q, qd, mem, sysm.fint, sysm.freal, sysm.tables, dq, dqd, dt)
+        n_fd = force_jacobian(t, q, qd, mem, sysm.fint, sysm.freal, sysm.tables, dq, dqd, dt, kinds)
         assert n_fd == (1 if fallback_elements(sysm) else 0)
         Ja = np.hstack([dq, dqd, dt[:, None]])
 
         def Q(tt, qq, vv):
             out = np.zeros(6)
-            eval_forces(tt, qq, vv, mem, sysm.fint, sysm.freal, sysm.tables, out, np.zeros((1, NOUT)))
+            eval_forces(tt, qq, vv, mem, sysm.fint, sysm.freal, sysm.tables, out, np.zeros((1, NOUT)), kinds)
             return out
 
         Jf = np.empty((6, 13))

@@ -14,8 +14,7 @@ import math
 import numpy as np
 
 from jointdyn.core.layout import params_of
-from jointdyn.film.jacobians import film_jac
-from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_model
+from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_jac, film_model
 
 _NAMES = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
 COLUMNS = {

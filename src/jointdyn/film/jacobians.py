@@ -19,7 +19,7 @@ import math
 from numba import njit
 
 from jointdyn.film.finite import _catmull_rom
-from jointdyn.film.kernels import ALSHAER2005, FINITE, OTT, SHORT, _atan_y_over_y_minus_1
+from jointdyn.film.kernels import _atan_y_over_y_minus_1
 
 
 @njit(cache=True)
@@ -302,23 +302,24 @@ def finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     return res[0], res[1], res[2], res[3], res[4], res[5], res[6], res[7]
 
 
-@njit(cache=True)
-def film_jac(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
-    """Film force and Jacobian of model ``code`` (8-tuple, see module docstring); NaNs for a
-    code without an analytic Jacobian (callers fall back to finite differences) [T90]."""
-    if code == OTT:
-        return ott_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == ALSHAER2005:
-        return pi_film_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == SHORT:
-        return short_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == FINITE:
-        return finite_jac(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    nan = math.nan
-    return nan, nan, nan, nan, nan, nan, nan, nan
-
-
-HAS_JACOBIAN = (OTT, ALSHAER2005, SHORT, FINITE)
-"""codes ``film_jac`` differentiates (the registry entries with a ``jacobian``, checked by the
-registry contract tests)"""
-"""film-model codes with an analytic Jacobian in :func:`film_jac`"""
+FD_JAC = """
+fr, ft = KERNEL(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+h_ = 6.055454452393343e-06 * (1.0 - xi)
+lo_ = max(xi - h_, 0.0)
+hi_ = xi + h_
+frp_, ftp_ = KERNEL(hi_, xi_dot, xi_Omega, mu, R, L, c, p, table)
+frm_, ftm_ = KERNEL(lo_, xi_dot, xi_Omega, mu, R, L, c, p, table)
+frx_ = (frp_ - frm_) / (hi_ - lo_)
+ftx_ = (ftp_ - ftm_) / (hi_ - lo_)
+s_ = 6.055454452393343e-06 * max(math.hypot(xi_dot, xi_Omega), 1e-300)
+frp_, ftp_ = KERNEL(xi, xi_dot + s_, xi_Omega, mu, R, L, c, p, table)
+frm_, ftm_ = KERNEL(xi, xi_dot - s_, xi_Omega, mu, R, L, c, p, table)
+fra_ = (frp_ - frm_) / (2.0 * s_)
+fta_ = (ftp_ - ftm_) / (2.0 * s_)
+frp_, ftp_ = KERNEL(xi, xi_dot, xi_Omega + s_, mu, R, L, c, p, table)
+frm_, ftm_ = KERNEL(xi, xi_dot, xi_Omega - s_, mu, R, L, c, p, table)
+return fr, ft, frx_, fra_, (frp_ - frm_) / (2.0 * s_), ftx_, fta_, (ftp_ - ftm_) / (2.0 * s_)
+"""
+"""The 8-tuple of :func:`pi_film_jac` for a film ``KERNEL`` without an exact Jacobian, by central
+differences [T229] (steps ε^{1/3}·(1 − ξ) for ξ, the distance to the wall setting the scale,
+cut at ξ = 0, and ε^{1/3}·|(ξ̇, ξΩ)| for the rates): source lines for the generated dispatch."""

@@ -2,8 +2,8 @@
 
 All kernels share one signature ``kernel(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft)``
 (arguments and conventions in :mod:`jointdyn.film.models`, theory docs/theory.md [T20–T39]); the
-registry with the dataclasses is :mod:`jointdyn.film.models`, the exact Jacobians are
-:mod:`jointdyn.film.jacobians`.
+registry with the dataclasses and the dispatch by code (generated from it [T229]) is
+:mod:`jointdyn.film.models`, the exact Jacobians are :mod:`jointdyn.film.jacobians`.
 """
 
 from __future__ import annotations
@@ -11,8 +11,6 @@ from __future__ import annotations
 import math
 
 from numba import njit
-
-from jointdyn.film.finite import finite_force
 
 OTT = 0
 ALSHAER2005 = 1
@@ -130,20 +128,3 @@ def short_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
     ) / (w1 * w1 * sw)
     icc = j3 - iss
     return -ks * (a * icc - b * isc), -ks * (a * isc - b * iss)
-
-
-@njit(cache=True)
-def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
-    """Film force (F_r, F_t) [N] of the model with registry code ``code``; (nan, nan) for an
-    unknown code. Arguments as in the module docstring. One branch per registry entry (the
-    contract tests check every entry of ``FILM_MODELS`` against its own kernel)."""
-    if code == OTT:
-        return ott_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == ALSHAER2005:
-        return pi_film_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == SHORT:
-        return short_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    elif code == FINITE:
-        return finite_force(xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
-    else:
-        return math.nan, math.nan

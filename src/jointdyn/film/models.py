@@ -28,7 +28,9 @@ from dataclasses import dataclass
 from typing import ClassVar
 
 import numpy as np
+from numba import njit
 
+from jointdyn.core.dispatch import all_laws, law_switch
 from jointdyn.core.layout import block_width, check_codes, params_of
 from jointdyn.film import jacobians as _jac
 from jointdyn.film.finite import DEFAULT_CAVITATION, finite_force
@@ -37,7 +39,6 @@ from jointdyn.film.kernels import (  # noqa: F401  (the kernels are part of this
     FINITE,
     OTT,
     SHORT,
-    film_force,
     ott_force,
     pi_film_force,
     short_force,
@@ -235,10 +236,50 @@ def film_forces(
 
 # -- optional capability: exact Jacobians [T90–T97] ------------------------------------------------
 # ``jacobian(xi, xi_dot, xi_Omega, mu, R, L, c, p, table) -> (Fr, Ft, ∂Fr/∂ξ, ∂Fr/∂ξ̇, ∂Fr/∂(ξΩ),
-# ∂Ft/∂ξ, ∂Ft/∂ξ̇, ∂Ft/∂(ξΩ))``; a model without one is differentiated by finite differences in the
-# system Jacobian (``element_jacobians.fallback_elements`` names such elements).
+# ∂Ft/∂ξ, ∂Ft/∂ξ̇, ∂Ft/∂(ξΩ))``; a model without one is differentiated by central differences of
+# its kernel in the compiled Jacobian (``jacobians.FD_JAC`` [T229]; ``simulate`` names it in a warning).
 
 Ott.jacobian = _jac.ott_jac  # type: ignore[attr-defined]
 Alshaer2005.jacobian = _jac.pi_film_jac  # type: ignore[attr-defined]
 Short.jacobian = _jac.short_jac  # type: ignore[attr-defined]
 Finite.jacobian = _jac.finite_jac  # type: ignore[attr-defined]
+
+
+# -- the dispatch by code, generated from FILM_MODELS when a caller is compiled [T229] -------------
+_ARGS = ("xi", "xi_dot", "xi_Omega", "mu", "R", "L", "c", "p", "table")
+film_dispatch = law_switch("film_dispatch", 0, FILM_MODELS, _ARGS, None, "(math.nan, math.nan)")
+"""compiled only: ``film_dispatch(laws, code, *args) -> (Fr, Ft)`` over the film models present in
+``laws`` (the journal element's entry of the system's kinds); (nan, nan) for another code"""
+film_jac_dispatch = law_switch(
+    "film_jac_dispatch",
+    0,
+    FILM_MODELS,
+    _ARGS,
+    _jac.FD_JAC,
+    "(" + "math.nan, " * 8 + ")",
+)
+"""compiled only: the 8-tuple of ``jacobian`` (exact, or central differences of the kernel)"""
+
+
+@njit(cache=True)
+def _film_force(laws, code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    return film_dispatch(laws, code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+
+
+@njit(cache=True)
+def _film_jac(laws, code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    return film_jac_dispatch(laws, code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+
+
+def film_force(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    """Film force (F_r, F_t) [N] of the model with registry code ``code`` through the compiled
+    dispatch over every registered model [T229]; (nan, nan) for an unknown code. Arguments as
+    in the module docstring."""
+    return _film_force(all_laws(FILM_MODELS, 0), code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table)
+
+
+def film_jac(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table):
+    """Film force and Jacobian (the 8-tuple of :mod:`jointdyn.film.jacobians`) of model ``code``:
+    its ``jacobian``, or central differences of its kernel for a model without one [T90, T229];
+    NaNs for an unknown code."""
+    return _film_jac(all_laws(FILM_MODELS, 0), code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table)

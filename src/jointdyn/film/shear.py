@@ -44,7 +44,6 @@ def finite_torques(xi, xi_dot, xi_Omega, mu, R, L, c, p, table, omega_journal, o
     return shear_torques(xi, ft, mu, R, L, c, omega_journal, omega_bearing)
 
 
-@njit(cache=True)
 def film_torques(code, xi, xi_dot, xi_Omega, mu, R, L, c, p, table, omega_journal, omega_bearing):
     """(M_J, M_B) [N·m] for the film model with registry code ``code`` (any of ``FILM_MODELS``):
     :func:`shear_torques` with that model's F_t [T75]. State arguments, parameter block ``p``

@@ -5,7 +5,8 @@ Each law is a frozen dataclass (its fields are the model-file schema) registered
 (the fields packed, in order, into the parameter block p that the kernel reads through named
 slots): penetration δ [m] (> 0 in contact), its rate δ̇ [m/s], the rate at contact onset δ̇⁻
 [m/s]. Damped laws are clamped to F_n ≥ 0 (no adhesive pull while separating).
-``contact_force(code, …)`` dispatches on the code.
+The compiled dispatch by code is generated from the registry (``contact_dispatch``,
+``contact_jac_dispatch`` [T229]); ``contact_force(code, …)`` is its Python-level entry.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from typing import ClassVar
 
 from numba import njit
 
+from jointdyn.core.dispatch import all_laws, law_switch
 from jointdyn.core.layout import Layout, block_width, check_codes, check_finite
 
 HERTZ, LANKARANI_NIKRAVESH, HUNT_CROSSLEY, FLORES, KELVIN_VOIGT = 0, 1, 2, 3, 4
@@ -62,26 +64,6 @@ def kelvin_voigt_force(delta, delta_dot, delta_dot0, p):
     """F = Kδ + Dδ̇ clamped ≥ 0 [T55]."""
     f = p[KV_STIFFNESS] * delta + p[KV_DAMPING] * delta_dot
     return f if f > 0.0 else 0.0
-
-
-@njit(cache=True)
-def contact_force(code, delta, delta_dot, delta_dot0, p):
-    """F_n ≥ 0 [N] of the law with registry code ``code`` (p: its ``PARAMS`` block); 0 for
-    δ ≤ 0, nan for an unknown code [T50–T55]. One branch per registry entry (the contract tests
-    check every entry of ``CONTACT_LAWS`` against its own kernel)."""
-    if delta <= 0.0:
-        return 0.0
-    if code == HERTZ:
-        return hertz_force(delta, delta_dot, delta_dot0, p)
-    if code == LANKARANI_NIKRAVESH:
-        return lankarani_nikravesh_force(delta, delta_dot, delta_dot0, p)
-    if code == HUNT_CROSSLEY:
-        return hunt_crossley_force(delta, delta_dot, delta_dot0, p)
-    if code == FLORES:
-        return flores_force(delta, delta_dot, delta_dot0, p)
-    if code == KELVIN_VOIGT:
-        return kelvin_voigt_force(delta, delta_dot, delta_dot0, p)
-    return math.nan
 
 
 @dataclass(frozen=True)
@@ -207,7 +189,8 @@ def journal_bearing_stiffness(R_bearing, R_journal, E_bearing, nu_bearing, E_jou
 
 
 # -- optional capability: exact Jacobians [T96] ----------------------------------------------------
-# ``jacobian(delta, delta_dot, delta_dot0, p) -> (F, ∂F/∂δ, ∂F/∂δ̇)``
+# ``jacobian(delta, delta_dot, delta_dot0, p) -> (F, ∂F/∂δ, ∂F/∂δ̇)``; a law without one is
+# differentiated by central differences of its kernel (``FD_JAC`` [T229]).
 
 
 @njit(cache=True)
@@ -260,27 +243,65 @@ def kelvin_voigt_jac(delta, delta_dot, delta_dot0, p):
     return 0.0, 0.0, 0.0
 
 
-@njit(cache=True)
-def contact_jac(code, delta, delta_dot, delta_dot0, p):
-    """F_n and ∂F_n/∂(δ, δ̇) of the law with registry code ``code``; zeros for δ ≤ 0, NaNs for an
-    unknown code (callers fall back to finite differences) [T96]."""
-    if delta <= 0.0:
-        return 0.0, 0.0, 0.0
-    if code == HERTZ:
-        return hertz_jac(delta, delta_dot, delta_dot0, p)
-    if code == LANKARANI_NIKRAVESH:
-        return lankarani_nikravesh_jac(delta, delta_dot, delta_dot0, p)
-    if code == HUNT_CROSSLEY:
-        return hunt_crossley_jac(delta, delta_dot, delta_dot0, p)
-    if code == FLORES:
-        return flores_jac(delta, delta_dot, delta_dot0, p)
-    if code == KELVIN_VOIGT:
-        return kelvin_voigt_jac(delta, delta_dot, delta_dot0, p)
-    return math.nan, math.nan, math.nan
-
-
 Hertz.jacobian = hertz_jac  # type: ignore[attr-defined]
 LankaraniNikravesh.jacobian = lankarani_nikravesh_jac  # type: ignore[attr-defined]
 HuntCrossley.jacobian = hunt_crossley_jac  # type: ignore[attr-defined]
 Flores.jacobian = flores_jac  # type: ignore[attr-defined]
 KelvinVoigt.jacobian = kelvin_voigt_jac  # type: ignore[attr-defined]
+
+
+FD_JAC = """
+f_ = KERNEL(delta, delta_dot, delta_dot0, p)
+h_ = 6.055454452393343e-06 * delta
+fp_ = KERNEL(delta + h_, delta_dot, delta_dot0, p)
+fm_ = KERNEL(delta - h_, delta_dot, delta_dot0, p)
+s_ = 6.055454452393343e-06 * max(abs(delta_dot), abs(delta_dot0))
+vp_ = KERNEL(delta, delta_dot + s_, delta_dot0, p)
+vm_ = KERNEL(delta, delta_dot - s_, delta_dot0, p)
+return f_, (fp_ - fm_) / (2.0 * h_), (vp_ - vm_) / (2.0 * s_)
+"""
+"""(F, ∂F/∂δ, ∂F/∂δ̇) of a contact ``KERNEL`` without an exact Jacobian by central differences
+[T229] (δ > 0; steps ε^{1/3}·δ and ε^{1/3}·max(|δ̇|, δ̇⁻)): source lines for the generated dispatch."""
+
+
+# -- the dispatch by code, generated from CONTACT_LAWS when a caller is compiled [T229] ------------
+_ARGS = ("delta", "delta_dot", "delta_dot0", "p")
+contact_dispatch = law_switch("contact_dispatch", 1, CONTACT_LAWS, _ARGS, None, "math.nan")
+"""compiled only: ``contact_dispatch(laws, code, δ, δ̇, δ̇⁻, p) -> F_n`` over the laws present in
+``laws`` (δ > 0: the caller tests contact); nan for another code"""
+contact_jac_dispatch = law_switch(
+    "contact_jac_dispatch",
+    1,
+    CONTACT_LAWS,
+    _ARGS,
+    FD_JAC,
+    "(math.nan, math.nan, math.nan)",
+)
+"""compiled only: (F_n, ∂F_n/∂δ, ∂F_n/∂δ̇) from ``jacobian`` or central differences of the kernel"""
+
+
+@njit(cache=True)
+def _contact_force(laws, code, delta, delta_dot, delta_dot0, p):
+    if delta <= 0.0:
+        return 0.0
+    return contact_dispatch(laws, code, delta, delta_dot, delta_dot0, p)
+
+
+@njit(cache=True)
+def _contact_jac(laws, code, delta, delta_dot, delta_dot0, p):
+    if delta <= 0.0:
+        return 0.0, 0.0, 0.0
+    return contact_jac_dispatch(laws, code, delta, delta_dot, delta_dot0, p)
+
+
+def contact_force(code, delta, delta_dot, delta_dot0, p):
+    """F_n ≥ 0 [N] of the law with registry code ``code`` (p: its ``PARAMS`` block) through the
+    compiled dispatch over every registered law; 0 for δ ≤ 0, nan for an unknown code
+    [T50–T55, T229]."""
+    return _contact_force(all_laws(CONTACT_LAWS, 1), code, delta, delta_dot, delta_dot0, p)
+
+
+def contact_jac(code, delta, delta_dot, delta_dot0, p):
+    """F_n and ∂F_n/∂(δ, δ̇) of the law ``code``: its ``jacobian``, or central differences of its
+    kernel; zeros for δ ≤ 0, NaNs for an unknown code [T96, T229]."""
+    return _contact_jac(all_laws(CONTACT_LAWS, 1), code, delta, delta_dot, delta_dot0, p)

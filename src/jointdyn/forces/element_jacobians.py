@@ -2,10 +2,11 @@
 
 The journal element (film and/or contact) is differentiated through its kinematics by the chain
 rule over the 12 local variables z = (q_i, q_j, q̇_i, q̇_j) [T98]; spring–damper, torsional spring,
-harmonic torque and tabulated force in closed form [T118]; an element without an analytic
-Jacobian (a film model not in ``HAS_JACOBIAN``, a spring at zero length, a journal at e = 0) is
-differentiated by central differences of its own contribution [T100], so every element is
-covered and the fallback is checked against the same references.
+harmonic torque and tabulated force in closed form [T118]; a law of a journal element without
+an exact Jacobian is differenced inside the element's Jacobian [T229]; an element without an
+analytic Jacobian (a kind without a ``JACOBIAN_KERNELS`` entry, a spring at zero length, a journal
+at e = 0) is differentiated by central differences of its own contribution [T100], so every
+element is covered and the fallback is checked against the same references.
 """
 
 from __future__ import annotations
@@ -14,11 +15,10 @@ import numpy as np
 from numba import njit
 
 from jointdyn.core.layout import BODY_I, BODY_J, TYPE
-from jointdyn.film.jacobians import film_jac
-from jointdyn.film.models import ALSHAER2005, FINITE, OTT, SHORT
-from jointdyn.forces.contact_laws import KELVIN_VOIGT, contact_jac
+from jointdyn.film.models import film_jac_dispatch
+from jointdyn.forces.contact_laws import KELVIN_VOIGT, contact_jac_dispatch
 from jointdyn.forces.elements import NOUT, eval_forces
-from jointdyn.forces.friction_laws import friction_jac
+from jointdyn.forces.friction_laws import friction_jac_dispatch
 from jointdyn.forces.journal import (
     CLR,
     CONTACT,
@@ -62,15 +62,13 @@ from jointdyn.forces.transfer import pair_jac, pair_rates
 
 
 @njit(cache=True)
-def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
-    """∂(Q_i, Q_j)/∂z of one journal element into DQ (6, 12), z = (q_i, q_j, q̇_i, q̇_j) [T98].
+def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
+    """∂(Q_i, Q_j)/∂z of one journal element into DQ (6, 12), z = (q_i, q_j, q̇_i, q̇_j) [T98],
+    with the laws' exact Jacobians or, for a law without one, central differences of its kernel
+    [T229] (``laws`` as in ``journal_element``).
 
-    Returns 0, or 1 where the element is not differentiable analytically (e = 0, or a film
-    model without an exact Jacobian): the caller then uses finite differences."""
-    if ip[FILM] != NO_FILM and not (
-        ip[FILM] == OTT or ip[FILM] == ALSHAER2005 or ip[FILM] == SHORT or ip[FILM] == FINITE
-    ):
-        return 1
+    Returns 0, or 1 where the element is not differentiable analytically (e = 0): the caller
+    then uses finite differences of the element."""
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = np.sqrt(ex * ex + ey * ey)
@@ -116,8 +114,8 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
         xi_om = xi_f * (wj + wi) - 2.0 * te / c
         Dxid = (te * tde / e + uded) / c
         DX = Dxi * (wj + wi) + xi_f * Dwsum - 2.0 * (-ue * tde / e + tded) / c
-        fr, ft, frx, fra, fro, ftx, fta, fto = film_jac(
-            ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
+        fr, ft, frx, fra, fro, ftx, fta, fto = film_jac_dispatch(
+            laws, ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
         )
         Dfr = frx * Dxi + fra * Dxid + fro * DX
         Dft = ftx * Dxi + fta * Dxid + fto * DX
@@ -146,7 +144,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
         if delta > 0.0:
             in_c = mem[IN_CONTACT] > 0.5
             v0 = mem[ONSET_VEL] if in_c else max(ue, r[V_MIN])
-            fn, fnd, fndd = contact_jac(ip[CONTACT], delta, ue, v0, r[CONTACT_P0:CONTACT_P1])
+            fn, fnd, fndd = contact_jac_dispatch(laws, ip[CONTACT], delta, ue, v0, r[CONTACT_P0:CONTACT_P1])
             if not in_c and ue > r[V_MIN] and ip[CONTACT] != KELVIN_VOIGT:
                 fndd = 0.0  # δ̇⁻ = δ̇ at an unrecorded onset: F = Kδⁿ(1 + χ) [T16]
             Dfn = fnd * ude + fndd * (te * tde / e + uded)
@@ -154,7 +152,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ):
             mu = 0.0
             dmu = 0.0
             if ip[FRICTION] != NO_FRICTION:
-                mu, dmu = friction_jac(ip[FRICTION], vt, r[FRICTION_P0:FRICTION_P1])
+                mu, dmu = friction_jac_dispatch(laws, ip[FRICTION], vt, r[FRICTION_P0:FRICTION_P1])
             Dvt = -ue * tde / e + tded
             Dvt[11] += r[R_J]
             Dvt[8] -= r[R_B]
@@ -270,10 +268,10 @@ def _spring_damper_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, d
 
 
 @njit(inline="always")
-def _journal_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt):
+def _journal_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt, laws):
     bi = fint[k, BODY_I]
     bj = fint[k, BODY_J]
-    if journal_jacobian(q, qd, mem[k], bi, bj, fint[k], freal[k], tables, DQ) != 0:
+    if journal_jacobian(q, qd, mem[k], bi, bj, fint[k], freal[k], tables, DQ, laws) != 0:
         return 1
     _scatter(DQ, bi, bj, dQdq, dQdqd)
     return 0
@@ -281,12 +279,13 @@ def _journal_jac(t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt):
 
 JACOBIAN_KERNELS = {
     SPRING_DAMPER: _spring_damper_jac,
-    JOURNAL: _journal_jac,
+    JOURNAL: (_journal_jac, "t, q, qd, k, mem, fint, freal, tables, DQ, dQdq, dQdqd, dQdt, kind"),
     TABULATED_FORCE: _tabulated_force_jac,
     TORSION_SPRING: _torsion_spring_jac,
     HARMONIC_TORQUE: _harmonic_torque_jac,
 }
-"""element code -> compiled exact Jacobian kernel (optional: without one, finite differences)"""
+"""element code -> compiled exact Jacobian kernel, or (kernel, its argument list) with ``kind`` the
+element's entry of the kinds (optional: without one, finite differences)"""
 
 _element_jacobian = kind_switch(
     "element_jacobian",
@@ -322,19 +321,26 @@ def force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt, kinds=
 def fallback_elements(system) -> list[str]:
     """Names of the elements of a compiled system whose Jacobian comes from the finite-difference
     fallback [T100] (journal elements use it additionally at e = 0 only, spring–dampers at zero
-    length [T118]): for a one-time notice."""
-    from jointdyn.film.jacobians import HAS_JACOBIAN
-    from jointdyn.film.models import film_model
-    from jointdyn.forces.journal import ClearanceJoint, JournalBearing
-    from jointdyn.forces.springs import SpringDamper
-    from jointdyn.forces.tabulated import TabulatedForce
-    from jointdyn.forces.torsion import HarmonicTorque, TorsionSpring
+    length [T118]): kinds without a ``JACOBIAN_KERNELS`` entry, for a one-time notice."""
+    return [
+        name
+        for name, e in zip(system.element_names, system.elements, strict=True)
+        if type(e).code not in JACOBIAN_KERNELS
+    ]
 
-    names = []
+
+def differenced_laws(system) -> list[str]:
+    """``"element: family law"`` for each law of a journal element of a compiled system that has
+    no exact ``jacobian`` and is differenced by central differences of its kernel [T229]."""
+    from jointdyn.film.models import film_model, film_name
+
+    out = []
     for name, e in zip(system.element_names, system.elements, strict=True):
-        if isinstance(e, (ClearanceJoint, SpringDamper, TorsionSpring, HarmonicTorque, TabulatedForce)):
-            continue
-        if isinstance(e, JournalBearing) and film_model(e.film).code in HAS_JACOBIAN:
-            continue
-        names.append(name)
-    return names
+        laws = [("contact law", getattr(e, "contact", None)), ("friction law", getattr(e, "friction", None))]
+        if getattr(e, "film", None) is not None:
+            laws.insert(0, ("film model", film_model(e.film)))
+        for family, law in laws:
+            if law is not None and getattr(type(law), "jacobian", None) is None:
+                label = film_name(law) if family == "film model" else type(law).__name__
+                out.append(f"{name}: {family} {label}")
+    return out

@@ -14,9 +14,15 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from jointdyn.core.dispatch import identity, law_tuple
 from jointdyn.core.layout import BODY_I, BODY_J, TYPE
+from jointdyn.film.models import FILM_MODELS
+from jointdyn.forces.contact_laws import CONTACT_LAWS
+from jointdyn.forces.friction_laws import FRICTION_LAWS
 from jointdyn.forces.journal import (
     CONTACT,
+    FILM,
+    FRICTION,
     IMPACTS,
     IN_CONTACT,
     JOURNAL,
@@ -62,13 +68,14 @@ FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law (+ el
 # One compiled kernel per element code. A kernel with the element signature
 # (t, q, q̇, k, mem, fint, freal, tables, Q, out) is registered as itself (k: the element's row of
 # the tables mem, fint, freal, out); a kernel with a signature of its own as (kernel, its argument
-# list), written in those names and the slot constants below. A new element type registers its
+# list), written in those names, the slot constants below and ``kind`` (the element's entry of
+# the kinds: for a journal element the laws it uses [T229]). A new element type registers its
 # kernel here (and its class above).
 FORCE_KERNELS = {
     SPRING_DAMPER: (spring_damper, "q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k]"),
     JOURNAL: (
         journal_element,
-        "q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, Q, out[k]",
+        "q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, Q, out[k], kind",
     ),
     TABULATED_FORCE: (
         tabulated_force,
@@ -87,10 +94,26 @@ _force_loop = kind_loop(
 )
 
 
+def journal_laws(fint: np.ndarray) -> tuple:
+    """The laws of the journal rows of an element table as the type-level tuple (film, contact,
+    friction) of :func:`jointdyn.core.dispatch.law_tuple` [T229]."""
+    rows = fint[fint[:, TYPE] == JOURNAL]
+    return (
+        law_tuple(FILM_MODELS, rows[:, FILM].tolist()),
+        law_tuple(CONTACT_LAWS, rows[:, CONTACT].tolist()),
+        law_tuple(FRICTION_LAWS, rows[:, FRICTION].tolist()),
+    )
+
+
 def kinds_of(fint: np.ndarray) -> tuple:
-    """The ``kinds`` argument of :func:`eval_forces` for an element table: 1 at each code it
-    contains, None elsewhere [T175]."""
-    return kinds_tuple(fint[:, TYPE].tolist(), tuple(FORCE_KERNELS))
+    """The ``kinds`` argument of :func:`eval_forces` for an element table: at each code it
+    contains the kind's identity (for journal elements the laws they use), None elsewhere
+    [T175, T229]."""
+    codes = fint[:, TYPE].tolist()
+    ids = {c: identity(k[0] if isinstance(k, tuple) else k) for c, k in FORCE_KERNELS.items() if c in codes}
+    if JOURNAL in codes:
+        ids[JOURNAL] = journal_laws(fint)
+    return kinds_tuple(codes, tuple(FORCE_KERNELS), ids)
 
 
 @njit(cache=True)

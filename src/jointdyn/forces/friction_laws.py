@@ -3,8 +3,9 @@
 Each law is a frozen dataclass registered with its integer ``code``, its compiled
 ``kernel(vt, p) -> μ_eff`` and its ``PARAMS`` (fields packed, in order, into the block p): μ_eff
 carries the sign of the slip velocity v_t [m/s], so that the tangential force −μ_eff·F_n opposes
-slip. ``friction_coefficient(code, …)`` dispatches on the code; code −1 (``NONE``) is
-frictionless.
+slip. The compiled dispatch by code is generated from the registry (``friction_dispatch``,
+``friction_jac_dispatch`` [T229]); ``friction_coefficient(code, …)`` is its Python-level entry;
+code −1 (``NONE``) is frictionless.
 """
 
 from __future__ import annotations
@@ -15,6 +16,7 @@ from typing import ClassVar
 
 from numba import njit
 
+from jointdyn.core.dispatch import all_laws, law_switch
 from jointdyn.core.layout import Layout, block_width, check_codes, check_finite
 
 COULOMB, AMBROSIO = 0, 1
@@ -41,17 +43,6 @@ def ambrosio_coefficient(vt, p):
         x = (a - v0) / (v1 - v0)  # [T62]
         cd = x * x * (3.0 - 2.0 * x)
     return p[A_MU] * cd * (1.0 if vt > 0 else -1.0)
-
-
-@njit(cache=True)
-def friction_coefficient(code, vt, p):
-    """μ_eff(v_t) [-] of the law with registry code ``code`` (p: its ``PARAMS`` block); 0 for
-    ``NONE`` and unknown codes [T60–T62]."""
-    if code == COULOMB:
-        return coulomb_coefficient(vt, p)
-    if code == AMBROSIO:
-        return ambrosio_coefficient(vt, p)
-    return 0.0
 
 
 @dataclass(frozen=True)
@@ -112,7 +103,8 @@ A_MU, A_V0, A_V1 = Layout(Ambrosio.PARAMS).slots(*Ambrosio.PARAMS)
 
 
 # -- optional capability: exact Jacobians [T97] ----------------------------------------------------
-# ``jacobian(vt, p) -> (μ_eff, dμ_eff/dv_t)``
+# ``jacobian(vt, p) -> (μ_eff, dμ_eff/dv_t)``; a law without one is differentiated by central
+# differences of its kernel (``FD_JAC`` [T229]).
 
 
 @njit(cache=True)
@@ -139,15 +131,55 @@ def ambrosio_jac(vt, p):
     return p[A_MU] * cd * sg, p[A_MU] * 6.0 * x * (1.0 - x) / (v1 - v0)
 
 
-@njit(cache=True)
-def friction_jac(code, vt, p):
-    """μ_eff(v_t) and dμ_eff/dv_t of the law ``code``; (0, 0) for ``NONE`` and unknown codes [T97]."""
-    if code == COULOMB:
-        return coulomb_jac(vt, p)
-    if code == AMBROSIO:
-        return ambrosio_jac(vt, p)
-    return 0.0, 0.0
-
-
 Coulomb.jacobian = coulomb_jac  # type: ignore[attr-defined]
 Ambrosio.jacobian = ambrosio_jac  # type: ignore[attr-defined]
+
+
+FD_JAC = """
+h_ = 6.055454452393343e-06 * max(abs(vt), 1e-9)
+return KERNEL(vt, p), (KERNEL(vt + h_, p) - KERNEL(vt - h_, p)) / (2.0 * h_)
+"""
+"""(μ_eff, dμ_eff/dv_t) of a friction ``KERNEL`` without an exact Jacobian by central differences
+[T229] (step ε^{1/3}·max(|v_t|, 1e-9 m/s)): source lines for the generated dispatch."""
+
+
+# -- the dispatch by code, generated from FRICTION_LAWS when a caller is compiled [T229] -----------
+friction_dispatch = law_switch("friction_dispatch", 2, FRICTION_LAWS, ("vt", "p"), None, "math.nan")
+"""compiled only: ``friction_dispatch(laws, code, v_t, p) -> μ_eff`` over the laws present in
+``laws``; nan for another code (the caller skips ``NONE``)"""
+friction_jac_dispatch = law_switch(
+    "friction_jac_dispatch",
+    2,
+    FRICTION_LAWS,
+    ("vt", "p"),
+    FD_JAC,
+    "(math.nan, math.nan)",
+)
+"""compiled only: (μ_eff, dμ_eff/dv_t) from ``jacobian`` or central differences of the kernel"""
+
+
+@njit(cache=True)
+def _friction_coefficient(laws, code, vt, p):
+    if code == NONE:
+        return 0.0
+    return friction_dispatch(laws, code, vt, p)
+
+
+@njit(cache=True)
+def _friction_jac(laws, code, vt, p):
+    if code == NONE:
+        return 0.0, 0.0
+    return friction_jac_dispatch(laws, code, vt, p)
+
+
+def friction_coefficient(code, vt, p):
+    """μ_eff(v_t) [-] of the law with registry code ``code`` (p: its ``PARAMS`` block) through the
+    compiled dispatch over every registered law; 0 for ``NONE``, nan for an unknown code
+    [T60–T62, T229]."""
+    return _friction_coefficient(all_laws(FRICTION_LAWS, 2), code, vt, p)
+
+
+def friction_jac(code, vt, p):
+    """μ_eff(v_t) and dμ_eff/dv_t of the law ``code``: its ``jacobian``, or central differences of
+    its kernel; (0, 0) for ``NONE``, NaNs for an unknown code [T97, T229]."""
+    return _friction_jac(all_laws(FRICTION_LAWS, 2), code, vt, p)

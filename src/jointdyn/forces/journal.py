@@ -32,12 +32,12 @@ from numba import njit
 from jointdyn.core.kinematics import body_state, point_kinematics
 from jointdyn.core.layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout, check_finite, params_of
 from jointdyn.errors import PhysicsWarning
-from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_force, film_model, film_name
+from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_dispatch, film_model, film_name
 from jointdyn.film.models import NONE as NO_FILM
 from jointdyn.film.shear_kernels import couette_torque
-from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_force
+from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_dispatch
 from jointdyn.forces.contact_laws import NONE as NO_CONTACT
-from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_coefficient
+from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_dispatch
 from jointdyn.forces.friction_laws import NONE as NO_FRICTION
 from jointdyn.forces.transfer import apply_pair, pair_power
 
@@ -330,10 +330,11 @@ def penetration(q, qd, bi, bj, r):
 
 
 @njit(cache=True)
-def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
+def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
     """Film and/or contact forces of one journal element into Q [T14–T16]; fills ``out``
     (``OUTPUTS``). ξ ≥ 1 probed with no contact law is evaluated guarded at ξ = 1 − 1e-9 (film
-    breakdown is reported on accepted steps by ``elements.advance_memory``)."""
+    breakdown is reported on accepted steps by ``elements.advance_memory``). ``laws``: the film,
+    contact and friction laws compiled into the dispatch (the element's entry of the kinds) [T229]."""
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = math.sqrt(ex * ex + ey * ey)
@@ -355,8 +356,8 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
         xi_f = min(xi, xi_cap, XI_GUARD)
         xid = (ux * edx + uy * edy) / c
         xi_om = xi_f * (wj + wi) - 2.0 * (tx * edx + ty * edy) / c  # ξΩ [T14]
-        fr, ft = film_force(
-            ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
+        fr, ft = film_dispatch(
+            laws, ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
         )
         ffx = fr * ux + ft * tx
         ffy = fr * uy + ft * ty
@@ -388,11 +389,11 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out):
         if delta > 0.0:
             dd = ux * edx + uy * edy
             v0 = mem[ONSET_VEL] if mem[IN_CONTACT] > 0.5 else max(dd, r[V_MIN])
-            fn = contact_force(ip[CONTACT], delta, dd, v0, r[CONTACT_P0:CONTACT_P1])
+            fn = contact_dispatch(laws, ip[CONTACT], delta, dd, v0, r[CONTACT_P0:CONTACT_P1])
             # slip of the journal surface relative to the bearing surface at P_c [T16]
             vt = tx * edx + ty * edy + wj * r[R_J] - wi * r[R_B]
             mu = (
-                friction_coefficient(ip[FRICTION], vt, r[FRICTION_P0:FRICTION_P1])
+                friction_dispatch(laws, ip[FRICTION], vt, r[FRICTION_P0:FRICTION_P1])
                 if ip[FRICTION] != NO_FRICTION
                 else 0.0
             )

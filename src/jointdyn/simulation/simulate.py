@@ -250,12 +250,19 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
     P = system.packed(a)
     t_out = np.linspace(t_start, t_start + config.t_end, config.n_out)
     if config.jacobian == "exact" and solver in ("rodas4", "ros34pw2", "radau5"):
-        from jointdyn.forces.element_jacobians import fallback_elements
+        from jointdyn.forces.element_jacobians import differenced_laws, fallback_elements
 
         fd = fallback_elements(system)
         if fd:
             warnings.warn(
                 f"jacobian='exact': no exact Jacobian for elements {fd}; they are differenced numerically",
+                stacklevel=3,
+            )
+        laws = differenced_laws(system)
+        if laws:
+            warnings.warn(
+                f"jacobian='exact': no exact Jacobian for {laws}; differenced by central differences of "
+                "the kernel [T229]",
                 stacklevel=3,
             )
     ysc, rtol = None, config.rtol
