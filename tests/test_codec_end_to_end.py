@@ -90,7 +90,7 @@ def test_finite_reynolds_four_bar_runs_loads_plots_and_maps(tmp_path):
             res.orbit("crank_pin", frame="world")[col], written / res.clearance("crank_pin")
         )
     summary = json.loads((out / "summary.json").read_text())
-    max_xi = summary["elements"]["crank_pin"]["max_xi"]
+    max_xi = summary["metrics"]["crank_pin.xi_max"]
     assert max_xi == float(res.element("crank_pin", "xi").max())
     assert 0.1 < max_xi < 1.0  # the film carries the crank pin's load: a real orbit, no breakdown
 

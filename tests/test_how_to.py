@@ -206,7 +206,8 @@ def test_how_to_output(tmp_path):
         """
         import csv
         from plugin_output import RotaryDamper
-        from jointdyn.studies.outputs import element_summary, system_columns, write_csv
+        from jointdyn.studies.metrics import metrics
+        from jointdyn.studies.outputs import system_columns, write_csv
 
         m = Model("spin-down", gravity=(0.0, 0.0))
         m.add_body("b", 2.0, 0.5, velocity=(0.0, 0.0, 10.0))
@@ -220,7 +221,7 @@ def test_how_to_output(tmp_path):
         print(json.dumps({"t": res.t.tolist(), "omega": res.element("damper", "omega").tolist(),
             "moment": res.element("damper", "moment").tolist(), "header": rows[0],
             "csv_omega": [float(r[col]) for r in rows[1:]],
-            "energy": element_summary(res, "damper")["energy_dissipated"]}))
+            "energy": metrics(res)["damper.energy_dissipated"]}))
         """,
     )
     t, w = np.array(out["t"]), np.array(out["omega"])
