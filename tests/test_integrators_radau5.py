@@ -8,9 +8,9 @@ import pytest
 from test_integrators import exact, oscillator
 
 from jointdyn import post
-from jointdyn.integrators.driver import RADAU5, new_work, start
-from jointdyn.integrators.radau5 import attempt_radau5, store_polynomial, write_dense_radau5
-from jointdyn.integrators.rodas4 import jacobian
+from jointdyn.integrators.common import fd_jacobian
+from jointdyn.integrators.driver import new_work, start
+from jointdyn.integrators.radau5 import RADAU5, attempt_radau5, store_polynomial, write_dense_radau5
 from jointdyn.models import slider_crank as sc
 from jointdyn.simulation.simulate import simulate
 from jointdyn.studies.runs import slider_crank_config
@@ -25,7 +25,7 @@ def one_step(h):
     t_out = np.array([0.0, 0.5 * h, h])
     w = new_work(RADAU5, system.y0, system.mem0, 0.0, t_out, h)
     assert start(RADAU5, P, True, w) == 0
-    jacobian(0.0, w.y, w.f0, w.mem, P, w.Jm, w.ft, w.work, w.fw)
+    fd_jacobian(0.0, w.y, w.f0, w.mem, P, w.Jm, w.ft, w.work, w.fw)
     res, en = attempt_radau5(0.0, h, P, w, 1e-13, 1e-18)  # Newton converged to round-off
     assert res == 0
     store_polynomial(h, w)

@@ -1,4 +1,5 @@
-"""Pieces shared by the compiled integrators: error norm, dense output, accepted-step hooks."""
+"""Pieces shared by the compiled integrators: error norm, dense output, accepted-step hooks, the
+forward-difference Jacobian."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from numba import njit
 
 from jointdyn.forces.elements import advance_memory
 from jointdyn.integrators.accuracy import film_gap_unresolved
-from jointdyn.multibody.dynamics import project
+from jointdyn.multibody.dynamics import project, rhs
 
 # status codes of the compiled integrators (messages in jointdyn.simulate)
 OK = 0
@@ -99,3 +100,30 @@ def start_outputs(y0, mem0, t0, t_out):
         MEM[iout] = mem0
         iout += 1
     return Y, MEM, iout
+
+
+@njit(cache=True)
+def fd_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
+    """Forward-difference ∂f/∂y (columns) and ∂f/∂t at (t, y) with f0 = f(t, y) (2n + 1
+    evaluations of the right-hand side). Returns a status (0 = ok)."""
+    nn = y.shape[0]
+    n = nn // 2
+    eps = 1.4901161193847656e-08
+    bad = 0
+    for j in range(nn):
+        scale = abs(y[j])
+        if j >= n:
+            scale = max(scale, 1e-3)
+        else:
+            scale = max(scale, 1e-5)
+        d = eps * scale
+        work[:] = y
+        work[j] += d
+        bad |= rhs(t, work, mem, P, fw)
+        for i in range(nn):
+            Jm[i, j] = (fw[i] - f0[i]) / d
+    dt = eps * max(abs(t), 1e-3)
+    bad |= rhs(t + dt, y, mem, P, fw)
+    for i in range(nn):
+        ft[i] = (fw[i] - f0[i]) / dt
+    return bad

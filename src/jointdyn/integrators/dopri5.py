@@ -3,8 +3,9 @@
 Explicit: good for the perfect and dry-contact mechanisms; the lubricated film is stiff (use
 ``rodas4``). After every accepted step the state is projected on the constraints and element
 memory is advanced; steps are limited so that a contact onset is never skipped — all done by the
-shared loop in :mod:`~jointdyn.integrators.driver` [T110]. Dense output: cubic Hermite from
-k₁ and k₇ (``common.write_dense``).
+shared loop in :mod:`~jointdyn.integrators.driver` [T110], to which :data:`DOPRI5` (the record
+of this method, [T225]) hands the hooks below. Dense output: cubic Hermite from k₁ and k₇
+(``common.write_dense``).
 """
 
 from __future__ import annotations
@@ -12,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from jointdyn.integrators.common import error_norm
+from jointdyn.integrators.common import error_norm, write_dense
+from jointdyn.integrators.driver import ATTEMPT_OK, CTL0, ICTL0, Stepper
 from jointdyn.multibody.dynamics import rhs
 
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
@@ -27,12 +29,12 @@ E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22
 
 @njit(cache=True)
 def attempt_dopri5(t, h, P, w, rtol, atol):
-    """One trial step from (t, w.y) with k₁ = w.K[0] to w.y1 (k₇ = f(t+h, y₁) in w.K[6]).
+    """One trial step from (t, w.y) with k₁ = w.f0 to w.y1 (k₇ = f(t+h, y₁) in w.K[6]).
 
     Returns (0, error norm) or (2, inf) if a right-hand side failed."""
     y, y1, yt, err, mem, K = w.y, w.y1, w.yt, w.err, w.mem, w.K
     nn = y.shape[0]
-    k1, k2, k3, k4, k5, k6, k7 = K[0], K[1], K[2], K[3], K[4], K[5], K[6]
+    k1, k2, k3, k4, k5, k6, k7 = w.f0, K[1], K[2], K[3], K[4], K[5], K[6]
     bad = 0
     for i in range(nn):
         yt[i] = y[i] + h * A21 * k1[i]
@@ -85,6 +87,11 @@ EXPO1 = 0.2 - 0.75 * BETA
 FAC_MIN, FAC_MAX, SAFE = 0.2, 10.0, 0.9
 
 
+# its own slots of Work.ctl / Work.ictl: the previous error norm, "the last attempt was rejected"
+E_PREV = CTL0
+REJECTED = ICTL0
+
+
 @njit(cache=True)
 def dopri5_accepted(h, en, e_prev, rejected_before):
     """(next h, error norm to remember) after an accepted step with error norm ``en`` [T204]."""
@@ -100,3 +107,38 @@ def dopri5_accepted(h, en, e_prev, rejected_before):
 def dopri5_rejected(h, en):
     """Next h after an error-test failure (en > 1) [T204]."""
     return h * max(FAC_MIN, SAFE * en**-EXPO1)
+
+
+@njit(cache=True)
+def rejected(res, h, en, w, reuse):
+    """Stepper hook: an error-test failure sets h by [T204] and holds h on the next accepted step."""
+    if res == ATTEMPT_OK:
+        h = dopri5_rejected(h, en)
+        w.ictl[REJECTED] = 1
+    return h
+
+
+@njit(cache=True)
+def accepted(h, h_prop, hmax, en, w, reuse):
+    """Stepper hook: the next h by Hairer's controller [T204]."""
+    h, w.ctl[E_PREV] = dopri5_accepted(h, en, w.ctl[E_PREV], w.ictl[REJECTED] == 1)
+    w.ictl[REJECTED] = 0
+    return h
+
+
+@njit(cache=True)
+def dense(t, t_new, w, t_out, iout):
+    """Stepper hook: outputs in (t, t_new] by cubic Hermite from k₁ = f(t, y) and k₇."""
+    return write_dense(t, w.y, w.f0, t_new, w.y1, w.K[6], w.mem, t_out, iout, w.Y, w.MEM)
+
+
+@njit(cache=True)
+def fsal(y, w, rtol, atol, projected):
+    """Stepper hook: k₇ becomes f(t, y) of the accepted state if :func:`fsal_reusable` [T203]."""
+    if fsal_reusable(y, w.y1, w.err, rtol, atol, projected):
+        w.f0[:] = w.K[6]
+        return True
+    return False
+
+
+DOPRI5 = Stepper("dopri5", 5, attempt_dopri5, rejected, accepted, dense, fsal, ctl=(1.0,), ictl=(0,))
