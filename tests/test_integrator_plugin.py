@@ -39,7 +39,7 @@ def attempt_heun(t, h, P, w, rtol, atol):
 
 
 @njit(cache=True)
-def heun_rejected(res, h, en, w, reuse):
+def heun_rejected(res, h, en, ctl, ictl, stats, reuse):
     """After a failed error test: h·max(0.2, 0.9‖err‖^(−1/2)) (the estimate is of order 1)."""
     if res == ATTEMPT_OK:
         h *= max(0.2, 0.9 * en**-0.5)
@@ -47,7 +47,7 @@ def heun_rejected(res, h, en, w, reuse):
 
 
 @njit(cache=True)
-def heun_accepted(h, h_prop, hmax, en, w, reuse):
+def heun_accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
     """The elementary controller, from the step proposed before landing on an output time."""
     return max(h, h_prop) * min(4.0, max(0.2, 0.9 * max(en, 1e-10) ** -0.5))
 

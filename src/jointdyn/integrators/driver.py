@@ -4,11 +4,11 @@
 A method is a :class:`Stepper`: a few declarations (order, stiff, Jacobian reuse, its own control
 slots, tolerance transform, extra statistics) and compiled hooks — ``attempt`` (one trial step
 from the state in :class:`Work`), ``rejected`` and ``accepted`` (its step-size control),
-``dense`` (its continuous extension; None: land on the output times) and ``fsal`` (reuse of its
-last stage as the next f(t, y)). This module owns everything around them: step-size limits
-(``hmax``, contact ``step_limit``, landing on ``t_end`` or on output times), rejection and retry
-(error norm, failed right-hand side, singular iteration matrix, unresolved contact onset), the
-accepted-step hooks (projection, element memory), the Jacobian and its reuse counter.
+``dense`` (its continuous extension; None: land on the output times); ``fsal`` names the stage
+that is f(t + h, y₁), reused as the next f(t, y). This module owns everything around them: the
+step-size limits (``hmax``, contact ``step_limit``, landing on ``t_end`` or on output times),
+rejection and retry (error norm, failed right-hand side, singular iteration matrix, unresolved
+contact onset), the accepted-step hooks (projection, element memory), the Jacobian and its age.
 
 All loop state lives in the arrays of :class:`Work` (``ctl``: floats, ``ictl``: integers; the
 driver's slots first, then the method's own, declared by its record), so :func:`drive` can return
@@ -32,7 +32,15 @@ from numba import njit
 from jointdyn.core.borrowed import borrowed
 from jointdyn.forces.contact_events import onset_limit, refine_peaks
 from jointdyn.forces.elements import onset_fraction, step_limit
-from jointdyn.integrators.common import MAX_STEPS, OK, RHS_FAILED, STEP_TOO_SMALL, accept_hooks, fd_jacobian
+from jointdyn.integrators.common import (
+    MAX_STEPS,
+    OK,
+    RHS_FAILED,
+    STEP_TOO_SMALL,
+    accept_hooks,
+    fd_jacobian,
+    fsal_reusable,
+)
 from jointdyn.multibody.dynamics import rhs
 from jointdyn.multibody.jacobian import jacobian_work_size, system_jacobian_into
 
@@ -55,17 +63,14 @@ class Stepper(NamedTuple):
 
     * ``attempt(t, h, P, w, rtol, atol) -> (ATTEMPT_*, error norm)``: one trial step from
       (t, w.y), f(t, y) in w.f0, to w.y1;
-    * ``rejected(res, h, en, w, reuse) -> h``: after a rejection (``res`` the attempt's result,
-      ATTEMPT_OK: the error test failed). The loop has already counted it and halved h
-      (singular) or quartered it (failed right-hand side); the hook may renew a Jacobian by
-      setting ``w.ictl[AGE] = reuse``;
-    * ``accepted(h, h_prop, hmax, en, w, reuse) -> h``: the next h after an accepted step (h_prop:
-      the step proposed before the clip to an output time), f(t, y) of the new state in w.f0
-      (unless ``jacobian_at_accept``);
+    * ``rejected(res, h, en, ctl, ictl, stats, reuse) -> h`` (``w.ctl``, ``w.ictl``, ``w.stats``):
+      after a rejection (``res`` the attempt's result, ATTEMPT_OK: the error test failed). The
+      loop has already counted it and halved h (singular) or quartered it (failed right-hand
+      side); the hook may renew a Jacobian by setting ``ictl[AGE] = reuse``;
+    * ``accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse) -> h``: the next h after an
+      accepted step (h_prop: the step proposed before the clip to an output time);
     * ``dense(t, t_new, w, t_out, iout) -> iout`` (None: every step lands on the next output
       time): write the outputs in (t, t_new] from w.y, w.y1, w.K before the accepted-step hooks;
-    * ``fsal(y, w, rtol, atol, projected) -> bool`` (None: never): True after putting a stage into
-      w.f0 as f(t, y) of the accepted (possibly projected) state y.
     """
 
     name: str
@@ -74,7 +79,7 @@ class Stepper(NamedTuple):
     rejected: Callable
     accepted: Callable
     dense: Callable | None = None
-    fsal: Callable | None = None
+    fsal: int | None = None  # row of w.K that is f(t + h, y₁): first-same-as-last [T203]
     stiff: bool = False  # implicit: takes the clearance error scales w.ysc [T186]
     reuse: tuple[int, int] | None = None  # accepted steps a Jacobian is kept (differences, exact); None: none
     jacobian_at_accept: bool = False  # exact: a due Jacobian right after an accepted step gives f0 [T185]
@@ -178,24 +183,18 @@ def new_work(
 
 
 @njit(cache=True)
-def _never(y, w, rtol, atol, projected):
-    """``fsal`` of a method without a reusable last stage."""
-    return False
-
-
-@njit(cache=True)
 def _no_dense(t, t_new, w, t_out, iout):
     """``dense`` of a method that lands on the output times (never called)."""
     return iout
 
 
 # the names of the hooks in the step loop: loop() binds them to a stepper's (globals of its copy)
-_attempt = _rejected = _accepted = _dense = _fsal = None
+_attempt = _rejected = _accepted = _dense = None
 
 
 def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
-    """The step loop; :func:`loop` rebinds its globals ``_attempt``, ``_rejected``, ``_accepted``,
-    ``_dense``, ``_fsal`` to a stepper's hooks. The flags are closure constants (integers), so
+    """The step loop; :func:`loop` rebinds its globals ``_attempt``, ``_rejected``, ``_accepted``
+    and ``_dense`` to a stepper's hooks. The flags are closure constants (integers), so
     numba's dead-branch pruning removes what a stepper does not use before typing (a method
     without a Jacobian never compiles one)."""
 
@@ -275,7 +274,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                 elif res == ATTEMPT_BAD:
                     fail_status = RHS_FAILED
                     h *= 0.25
-                h = _rejected(res, h, en, w, reuse)
+                h = _rejected(res, h, en, ctl, ictl, stats, reuse)
                 continue
             frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal, P.kinds)
             if frac < 1.0:
@@ -302,14 +301,14 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                     w.Y[iout] = y
                     w.MEM[iout] = mem
                     iout += 1
-            if FSAL == 1 and _fsal(y, w, rtol, atol, do_project and P.n_rows > 0):
-                pass  # first-same-as-last [T203]: f0 is the method's last stage
+            if FSAL >= 0 and fsal_reusable(y, y1, w.err, rtol, atol, do_project and P.n_rows > 0):
+                w.f0[:] = w.K[FSAL]  # first-same-as-last [T203]
             elif AT_ACCEPT == 0:  # (AT_ACCEPT: f0 after the controller)
                 if rhs(t, y, mem, P, w.f0) != 0:
                     status = RHS_FAILED
                     break
                 stats[0] += 1
-            h = _accepted(h, h_prop, hmax, en, w, reuse)
+            h = _accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse)
             if AT_ACCEPT == 1:
                 # a Jacobian due at the next step is taken now: its accelerations are f(t, y), so
                 # f0 costs no evaluation of its own (same arithmetic as rhs) [T185]
@@ -386,11 +385,11 @@ def loop(stepper: Stepper, exact: int):
             "_rejected": stepper.rejected,
             "_accepted": stepper.accepted,
             "_dense": _no_dense if land else stepper.dense,
-            "_fsal": _never if stepper.fsal is None else stepper.fsal,
         }
         reuse = stepper.reuse[exact] if stepper.reuse else 0
         at_accept = int(stepper.jacobian_at_accept and exact == 1)
-        tmpl = _template(int(land), int(stepper.fsal is not None), int(jac), exact, at_accept, reuse)
+        fsal = -1 if stepper.fsal is None else stepper.fsal
+        tmpl = _template(int(land), fsal, int(jac), exact, at_accept, reuse)
         fn = types.FunctionType(tmpl.__code__, globals() | hooks, tmpl.__name__, None, tmpl.__closure__)
         fn.__qualname__ = f"drive_{stepper.name}_{_fingerprint(hooks.values())}"
         fn.__doc__ = tmpl.__doc__

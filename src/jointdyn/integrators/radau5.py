@@ -267,26 +267,33 @@ def _quot(en, ctl):
 
 
 @njit(cache=True)
-def radau5_rejected(h, en, w):
-    """New h after an error-test failure; a Jacobian that is not fresh is renewed."""
-    w.ictl[REJECTED] = 1
-    if w.stats[1] == 0:
-        return 0.1 * h
-    return h / _quot(en, w.ctl)
+def rejected(res, h, en, ctl, ictl, stats, reuse):
+    """Stepper hook: after a Newton failure h ← h·HHFAC (set by the attempt), after an error-test
+    failure h ← h/quot (h/10 before the first accepted step); a Jacobian that is not fresh is
+    renewed (not after a singular matrix, whose h the loop halved)."""
+    if res == ATTEMPT_DIVERGED:
+        stats[6] += 1
+        h *= ctl[HHFAC]
+        ictl[REJECTED] = 1
+    elif res == ATTEMPT_OK:
+        ictl[REJECTED] = 1
+        h = 0.1 * h if stats[1] == 0 else h / _quot(en, ctl)
+    if res != ATTEMPT_SINGULAR and ictl[AGE] > 0:
+        ictl[AGE] = reuse
+    return h
 
 
 @njit(cache=True)
-def radau5_accepted(h, h_max, en, w, reuse):
-    """New h after an accepted step (Gustafsson's predictive controller), and the Jacobian /
-    LU reuse decision of RADAU5."""
-    ctl, ictl = w.ctl, w.ictl
+def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
+    """Stepper hook: new h after an accepted step (Gustafsson's predictive controller), and the
+    Jacobian / LU reuse decision of RADAU5."""
     quot = _quot(en, ctl)
-    if w.stats[1] > 1:
+    if stats[1] > 1:
         facgus = (ctl[H_ACC] / h) * (en**2 / ctl[ERR_ACC]) ** 0.25 / SAFE
         quot = max(quot, max(FACR, min(FACL, facgus)))
     ctl[H_ACC] = h
     ctl[ERR_ACC] = max(1e-2, en)
-    hnew = min(h / quot, h_max)
+    hnew = min(h / quot, hmax)
     if ictl[REJECTED] == 1:
         hnew = min(hnew, h)
     ictl[REJECTED] = 0
@@ -299,9 +306,12 @@ def radau5_accepted(h, h_max, en, w, reuse):
 
 
 @njit(cache=True)
-def store_polynomial(h, w):
-    """After acceptance: collocation polynomial of the step (dense output, next start)."""
-    K = w.K
+def dense(t, t_new, w, t_out, iout):
+    """Stepper hook: the collocation polynomial of the accepted step (also the next Newton
+    start), then the outputs in (t, t_new] from it (order 3 uniformly) [T113]; returns the next
+    output index."""
+    h = t_new - t
+    K, y1, Y = w.K, w.y1, w.Y
     for i in range(K.shape[1]):
         z1, z2, z3 = K[0, i], K[1, i], K[2, i]
         K[6, i] = (z2 - z3) / C2M1
@@ -311,53 +321,16 @@ def store_polynomial(h, w):
         K[8, i] = K[7, i] - acont3
     w.ctl[H_OLD] = h
     w.ictl[HAVE_CONT] = 1
-
-
-@njit(cache=True)
-def write_dense_radau5(t0, t1, y1, K, mem, t_out, iout, Y, MEM):
-    """Outputs in (t0, t1] from the collocation polynomial (order 3 uniformly) [T113]."""
-    h = t1 - t0
-    nn = y1.shape[0]
-    while iout < t_out.shape[0] and t_out[iout] <= t1 + 1e-15 * abs(t1):
-        s = min(max((t_out[iout] - t1) / h, -1.0), 0.0) if h > 0 else 0.0
-        for i in range(nn):
+    while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
+        s = min(max((t_out[iout] - t_new) / h, -1.0), 0.0) if h > 0 else 0.0
+        for i in range(y1.shape[0]):
             Y[iout, i] = y1[i] + s * (K[6, i] + (s - C2M1) * (K[7, i] + (s - C1M1) * K[8, i]))
-        MEM[iout] = mem
+        w.MEM[iout] = w.mem
         iout += 1
     return iout
 
 
-@njit(cache=True)
-def rejected(res, h, en, w, reuse):
-    """Stepper hook: after a Newton failure h ← h·HHFAC (set by the attempt), after an error-test
-    failure :func:`radau5_rejected`; a Jacobian that is not fresh is renewed (not after a
-    singular matrix, whose h was halved by the loop)."""
-    if res == ATTEMPT_DIVERGED:
-        w.stats[6] += 1
-        h *= w.ctl[HHFAC]
-        w.ictl[REJECTED] = 1
-    elif res == ATTEMPT_OK:
-        h = radau5_rejected(h, en, w)
-    if res != ATTEMPT_SINGULAR and w.ictl[AGE] > 0:
-        w.ictl[AGE] = reuse
-    return h
-
-
-@njit(cache=True)
-def accepted(h, h_prop, hmax, en, w, reuse):
-    """Stepper hook: :func:`radau5_accepted`."""
-    return radau5_accepted(h, hmax, en, w, reuse)
-
-
-@njit(cache=True)
-def dense(t, t_new, w, t_out, iout):
-    """Stepper hook: the step's collocation polynomial (:func:`store_polynomial`, also the next
-    Newton start), then the outputs in (t, t_new] from it."""
-    store_polynomial(t_new - t, w)
-    return write_dense_radau5(t, t_new, w.y1, w.K, w.mem, t_out, iout, w.Y, w.MEM)
-
-
-# The Jacobian is kept until the Newton contraction asks for a new one (radau5_accepted), so its
+# The Jacobian is kept until the Newton contraction asks for a new one (accepted), so its
 # reuse count never runs out; with the exact Jacobian it is taken right after the accepted step
 # and gives f(t, y) [T185]. θ, the Newton factor and the previous h start at 1, the LU at none.
 RADAU5 = Stepper(

@@ -113,25 +113,6 @@ def lu_solve(W, piv, b):
 
 
 @njit(cache=True)
-def write_dense_rodas(t0, y0, t1, y1, K, mem, t_out, iout, Y, MEM):
-    """Write every output time in (t0, t1] with the stiffly accurate continuous extension [T13]."""
-    h = t1 - t0
-    nn = y0.shape[0]
-    while iout < t_out.shape[0] and t_out[iout] <= t1 + 1e-15 * abs(t1):
-        th = min(max((t_out[iout] - t0) / h, 0.0), 1.0) if h > 0 else 1.0
-        for i in range(nn):
-            d1 = 0.0
-            d2 = 0.0
-            for j in range(5):
-                d1 += H[0, j] * K[j, i]
-                d2 += H[1, j] * K[j, i]
-            Y[iout, i] = (1.0 - th) * y0[i] + th * (y1[i] + (1.0 - th) * (d1 + th * d2))
-        MEM[iout] = mem
-        iout += 1
-    return iout
-
-
-@njit(cache=True)
 def attempt_rodas4(t, h, P, w, rtol, atol):
     """One trial step from (t, w.y) with f0 = w.f0 and the Jacobian in w.Jm, w.ft to w.y1
     (stages in w.K). Returns (0, error norm), (1, inf) if W is singular, (2, inf) if a
@@ -171,7 +152,7 @@ def attempt_rodas4(t, h, P, w, rtol, atol):
 
 
 @njit(cache=True)
-def rejected(res, h, en, w, reuse):
+def rejected(res, h, en, ctl, ictl, stats, reuse):
     """Stepper hook: after an error-test failure h ← h·max(0.2, 0.9‖err‖^(−1/4)) [T110]."""
     if res == ATTEMPT_OK:
         h *= max(0.2, 0.9 * en**-0.25)
@@ -179,7 +160,7 @@ def rejected(res, h, en, w, reuse):
 
 
 @njit(cache=True)
-def accepted(h, h_prop, hmax, en, w, reuse):
+def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
     """Stepper hook: the elementary controller h ← h·min(6, max(0.2, 0.9‖err‖^(−1/4))) [T110]."""
     e_now = max(en, 1e-10)
     return h * min(6.0, max(0.2, 0.9 * e_now**-0.25))
@@ -187,8 +168,23 @@ def accepted(h, h_prop, hmax, en, w, reuse):
 
 @njit(cache=True)
 def dense(t, t_new, w, t_out, iout):
-    """Stepper hook: outputs in (t, t_new] from the continuous extension (:func:`write_dense_rodas`)."""
-    return write_dense_rodas(t, w.y, t_new, w.y1, w.K, w.mem, t_out, iout, w.Y, w.MEM)
+    """Stepper hook: outputs in (t, t_new] from the stiffly accurate continuous extension [T13];
+    returns the next output index."""
+    h = t_new - t
+    y0, y1, K, Y = w.y, w.y1, w.K, w.Y
+    nn = y0.shape[0]
+    while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
+        th = min(max((t_out[iout] - t) / h, 0.0), 1.0) if h > 0 else 1.0
+        for i in range(nn):
+            d1 = 0.0
+            d2 = 0.0
+            for j in range(5):
+                d1 += H[0, j] * K[j, i]
+                d2 += H[1, j] * K[j, i]
+            Y[iout, i] = (1.0 - th) * y0[i] + th * (y1[i] + (1.0 - th) * (d1 + th * d2))
+        w.MEM[iout] = w.mem
+        iout += 1
+    return iout
 
 
 # a fresh Jacobian for every step (reuse 1 with either kind); stiff: takes the clearance scales

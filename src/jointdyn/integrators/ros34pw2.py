@@ -97,25 +97,25 @@ def attempt_ros34pw2(t, h, P, w, rtol, atol):
 
 
 @njit(cache=True)
-def rejected(res, h, en, w, reuse):
+def rejected(res, h, en, ctl, ictl, stats, reuse):
     """Stepper hook: after an error-test failure h ← h·max(0.2, 0.8‖err‖^(−1/3)); a Jacobian that
     is not fresh may be the cause of any rejection (renewed; a singular W renews it always)."""
     if res == ATTEMPT_OK:
         h *= max(0.2, 0.8 * en ** (-1.0 / 3.0))
-        if w.ictl[AGE] > 0:
-            w.ictl[AGE] = reuse
+        if ictl[AGE] > 0:
+            ictl[AGE] = reuse
     elif res == ATTEMPT_SINGULAR or res == ATTEMPT_BAD:
-        w.ictl[AGE] = reuse
+        ictl[AGE] = reuse
     return h
 
 
 @njit(cache=True)
-def accepted(h, h_prop, hmax, en, w, reuse):
+def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
     """Stepper hook: PI controller (Gustafsson; Hairer & Wanner II §IV.8), exponents 0.7/k,
     0.4/k with k = 3, from the step proposed before landing on an output time."""
     e_now = max(en, 1e-10)
-    fac = 0.9 * e_now ** (-0.7 / 3.0) * w.ctl[E_PREV] ** (0.4 / 3.0)
-    w.ctl[E_PREV] = e_now
+    fac = 0.9 * e_now ** (-0.7 / 3.0) * ctl[E_PREV] ** (0.4 / 3.0)
+    ctl[E_PREV] = e_now
     return max(h, h_prop) * min(3.0, max(0.2, fac))
 
 
