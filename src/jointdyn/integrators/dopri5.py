@@ -98,14 +98,14 @@ def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
 
 
 @njit(cache=True)
-def dense(t, t_new, w, t_out, iout):
+def dense(t, t_new, y, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
     """Stepper hook: outputs in (t, t_new] by cubic Hermite interpolation from y, k₁ = f(t, y),
     y₁ and k₇ (4th-order accurate state); returns the next output index."""
     h = t_new - t
     while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
         th = (t_out[iout] - t) / h if h > 0 else 1.0
-        hermite(w.y, w.f0, w.y1, w.K[6], h, min(max(th, 0.0), 1.0), w.Y[iout])
-        w.MEM[iout] = w.mem
+        hermite(y, f0, y1, K[6], h, min(max(th, 0.0), 1.0), Y[iout])
+        MEM[iout] = mem
         iout += 1
     return iout
 

@@ -306,12 +306,11 @@ def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
 
 
 @njit(cache=True)
-def dense(t, t_new, w, t_out, iout):
+def dense(t, t_new, y, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
     """Stepper hook: the collocation polynomial of the accepted step (also the next Newton
     start), then the outputs in (t, t_new] from it (order 3 uniformly) [T113]; returns the next
     output index."""
     h = t_new - t
-    K, y1, Y = w.K, w.y1, w.Y
     for i in range(K.shape[1]):
         z1, z2, z3 = K[0, i], K[1, i], K[2, i]
         K[6, i] = (z2 - z3) / C2M1
@@ -319,13 +318,13 @@ def dense(t, t_new, w, t_out, iout):
         acont3 = (ak - z1 / C1) / C2
         K[7, i] = (ak - K[6, i]) / C1M1
         K[8, i] = K[7, i] - acont3
-    w.ctl[H_OLD] = h
-    w.ictl[HAVE_CONT] = 1
+    ctl[H_OLD] = h
+    ictl[HAVE_CONT] = 1
     while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
         s = min(max((t_out[iout] - t_new) / h, -1.0), 0.0) if h > 0 else 0.0
         for i in range(y1.shape[0]):
             Y[iout, i] = y1[i] + s * (K[6, i] + (s - C2M1) * (K[7, i] + (s - C1M1) * K[8, i]))
-        w.MEM[iout] = w.mem
+        MEM[iout] = mem
         iout += 1
     return iout
 

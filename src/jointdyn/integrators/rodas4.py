@@ -167,11 +167,10 @@ def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
 
 
 @njit(cache=True)
-def dense(t, t_new, w, t_out, iout):
+def dense(t, t_new, y0, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
     """Stepper hook: outputs in (t, t_new] from the stiffly accurate continuous extension [T13];
     returns the next output index."""
     h = t_new - t
-    y0, y1, K, Y = w.y, w.y1, w.K, w.Y
     nn = y0.shape[0]
     while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
         th = min(max((t_out[iout] - t) / h, 0.0), 1.0) if h > 0 else 1.0
@@ -182,7 +181,7 @@ def dense(t, t_new, w, t_out, iout):
                 d1 += H[0, j] * K[j, i]
                 d2 += H[1, j] * K[j, i]
             Y[iout, i] = (1.0 - th) * y0[i] + th * (y1[i] + (1.0 - th) * (d1 + th * d2))
-        w.MEM[iout] = w.mem
+        MEM[iout] = mem
         iout += 1
     return iout
 
