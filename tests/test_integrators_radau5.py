@@ -28,7 +28,8 @@ def one_step(h):
     fd_jacobian(0.0, w.y, w.f0, w.mem, P, w.Jm, w.ft, w.work, w.fw)
     res, en = attempt_radau5(0.0, h, P, w, 1e-13, 1e-18)  # Newton converged to round-off
     assert res == 0
-    assert dense(0.0, h, w, t_out, 1) == 3  # collocation polynomial, outputs at h/2 and h
+    # collocation polynomial, outputs at h/2 and h
+    assert dense(0.0, h, w.y, w.f0, w.y1, w.K, w.mem, w.ctl, w.ictl, t_out, 1, w.Y, w.MEM) == 3
     x1 = w.y1[0] - 0.1
     xm = w.Y[1, 0] - 0.1
     ex = exact(np.array([0.5 * h, h]), K_, D_, MASS, X0)
