@@ -31,7 +31,8 @@ from jointdyn.forces.contact_events import onset_limit, refine_peaks
 from jointdyn.forces.elements import advance_memory, onset_fraction, step_limit
 from jointdyn.forces.journal import IN_CONTACT
 from jointdyn.integrators.common import error_norm
-from jointdyn.integrators.driver import DOPRI5, RUNNING, T, drive, new_work, start
+from jointdyn.integrators.dopri5 import DOPRI5
+from jointdyn.integrators.driver import RUNNING, T, drive, new_work, start
 from jointdyn.models.slider_crank import PIN, SPEED, slider_crank
 from jointdyn.multibody.dynamics import project, rhs
 

@@ -16,8 +16,10 @@ from functools import partial
 
 import numpy as np
 
-from jointdyn.integrators.driver import RADAU5, RODAS4, ROS34PW2
 from jointdyn.integrators.driver import run as drive_run
+from jointdyn.integrators.radau5 import RADAU5
+from jointdyn.integrators.rodas4 import RODAS4
+from jointdyn.integrators.ros34pw2 import ROS34PW2
 from jointdyn.models.slider_crank import SPEED, slider_crank
 
 

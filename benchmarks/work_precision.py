@@ -30,8 +30,8 @@ from numba import njit
 from jointdyn import post
 from jointdyn.core.borrowed import borrowed
 from jointdyn.errors import SimulationError
-from jointdyn.integrators.driver import RADAU5, new_work
-from jointdyn.integrators.radau5 import ALPH, BETA, U1, _factor, _solve
+from jointdyn.integrators.driver import new_work
+from jointdyn.integrators.radau5 import ALPH, BETA, RADAU5, U1, _factor, _solve
 from jointdyn.models.slider_crank import SPEED, slider_crank
 from jointdyn.multibody.dynamics import rhs
 from jointdyn.multibody.jacobian import system_jacobian

@@ -10,7 +10,9 @@ from numba import njit
 from numba.core.runtime import _nrt_python, rtsys
 
 from jointdyn.core.borrowed import borrowed
-from jointdyn.integrators.driver import DOPRI5, RADAU5, drive, new_work, run, start
+from jointdyn.integrators.dopri5 import DOPRI5
+from jointdyn.integrators.driver import drive, new_work, run, start
+from jointdyn.integrators.radau5 import RADAU5
 from jointdyn.models.slider_crank import slider_crank
 
 

@@ -8,9 +8,9 @@ import pytest
 from test_integrators import exact, oscillator
 
 from jointdyn import post
-from jointdyn.integrators.driver import RADAU5, new_work, start
-from jointdyn.integrators.radau5 import attempt_radau5, store_polynomial, write_dense_radau5
-from jointdyn.integrators.rodas4 import jacobian
+from jointdyn.integrators.common import fd_jacobian
+from jointdyn.integrators.driver import new_work, start
+from jointdyn.integrators.radau5 import RADAU5, attempt_radau5, dense
 from jointdyn.models import slider_crank as sc
 from jointdyn.simulation.simulate import simulate
 from jointdyn.studies.runs import slider_crank_config
@@ -25,14 +25,13 @@ def one_step(h):
     t_out = np.array([0.0, 0.5 * h, h])
     w = new_work(RADAU5, system.y0, system.mem0, 0.0, t_out, h)
     assert start(RADAU5, P, True, w) == 0
-    jacobian(0.0, w.y, w.f0, w.mem, P, w.Jm, w.ft, w.work, w.fw)
+    fd_jacobian(0.0, w.y, w.f0, w.mem, P, w.Jm, w.ft, w.work, w.fw)
     res, en = attempt_radau5(0.0, h, P, w, 1e-13, 1e-18)  # Newton converged to round-off
     assert res == 0
-    store_polynomial(h, w)
-    Y, MEM = np.zeros((3, w.y.shape[0])), np.zeros((3,) + w.mem.shape)
-    write_dense_radau5(0.0, h, w.y1, w.K, w.mem, t_out, 1, Y, MEM)
+    # collocation polynomial, outputs at h/2 and h
+    assert dense(0.0, h, w.y, w.f0, w.y1, w.K, w.mem, w.ctl, w.ictl, t_out, 1, w.Y, w.MEM) == 3
     x1 = w.y1[0] - 0.1
-    xm = Y[1, 0] - 0.1
+    xm = w.Y[1, 0] - 0.1
     ex = exact(np.array([0.5 * h, h]), K_, D_, MASS, X0)
     return abs(x1 - ex[1]), abs(xm - ex[0])
 

@@ -8,7 +8,8 @@ import pytest
 
 from jointdyn.core.constraints import eval_constraints
 from jointdyn.forces.elements import NOUT
-from jointdyn.integrators.driver import METHODS, run
+from jointdyn.integrators import SOLVERS
+from jointdyn.integrators.driver import run
 from jointdyn.models.slider_crank import SPEED, slider_crank
 from jointdyn.multibody.dynamics import (
     accelerations,
@@ -27,7 +28,19 @@ def raw_samples(system, solver, n_out=121, rtol=1e-8):
     P = system.packed(0.0)
     ts = np.linspace(0.0, T1 / 4, n_out)
     Y, MEM, nw, _, status, *_ = run(
-        METHODS[solver], P, system.y0, system.mem0, 0.0, ts, rtol, rtol * 1e-2, 0.0, np.inf, 10**8, True, True
+        SOLVERS[solver][0],
+        P,
+        system.y0,
+        system.mem0,
+        0.0,
+        ts,
+        rtol,
+        rtol * 1e-2,
+        0.0,
+        np.inf,
+        10**8,
+        True,
+        True,
     )
     assert status == 0 and nw == n_out
     return P, ts, Y, MEM

@@ -1,4 +1,5 @@
-"""Pieces shared by the compiled integrators: error norm, dense output, accepted-step hooks."""
+"""Pieces shared by the compiled integrators: error norm, dense output, accepted-step hooks, the
+forward-difference Jacobian."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ from numba import njit
 
 from jointdyn.forces.elements import advance_memory
 from jointdyn.integrators.accuracy import film_gap_unresolved
-from jointdyn.multibody.dynamics import project
+from jointdyn.multibody.dynamics import project, rhs
 
 # status codes of the compiled integrators (messages in jointdyn.simulate)
 OK = 0
@@ -56,16 +57,21 @@ def hermite(y0, f0, y1, f1, h, th, out):
         out[i] = h00 * y0[i] + h10 * h * f0[i] + h01 * y1[i] + h11 * h * f1[i]
 
 
+FSAL_PROJECTION = 0.01  # largest projection correction (error-norm units) for which f(y₁) is reused
+
+
 @njit(cache=True)
-def write_dense(t0, y0, f0, t1, y1, f1, mem, t_out, iout, Y, MEM):
-    """Write every output time in (t0, t1] by Hermite interpolation; returns the next index."""
-    h = t1 - t0
-    while iout < t_out.shape[0] and t_out[iout] <= t1 + 1e-15 * abs(t1):
-        th = (t_out[iout] - t0) / h if h > 0 else 1.0
-        hermite(y0, f0, y1, f1, h, min(max(th, 0.0), 1.0), Y[iout])
-        MEM[iout] = mem
-        iout += 1
-    return iout
+def fsal_reusable(y, y1, scratch, rtol, atol, projected):
+    """True if f(t+h, y₁) (the last stage of a first-same-as-last method) can serve as f(t, y) at
+    the accepted state y [T203]: always without projection; after the projection y₁ → y when the
+    correction is at most ``FSAL_PROJECTION`` in the error norm. For DOPRI5, reusing k₇ then
+    perturbs the next step by ≈ h·b₁·J·(y − y₁), below 0.1·h‖J‖·0.01 ≤ 3.3e-3 of the tolerance on
+    its stability region (h‖J‖ ≤ 3.3). ``scratch`` (len(y)) is overwritten."""
+    if not projected:
+        return True
+    for i in range(y.shape[0]):
+        scratch[i] = y[i] - y1[i]
+    return error_norm(scratch, y1, y, rtol, atol) <= FSAL_PROJECTION
 
 
 @njit(cache=True)
@@ -99,3 +105,30 @@ def start_outputs(y0, mem0, t0, t_out):
         MEM[iout] = mem0
         iout += 1
     return Y, MEM, iout
+
+
+@njit(cache=True)
+def fd_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
+    """Forward-difference ∂f/∂y (columns) and ∂f/∂t at (t, y) with f0 = f(t, y) (2n + 1
+    evaluations of the right-hand side). Returns a status (0 = ok)."""
+    nn = y.shape[0]
+    n = nn // 2
+    eps = 1.4901161193847656e-08
+    bad = 0
+    for j in range(nn):
+        scale = abs(y[j])
+        if j >= n:
+            scale = max(scale, 1e-3)
+        else:
+            scale = max(scale, 1e-5)
+        d = eps * scale
+        work[:] = y
+        work[j] += d
+        bad |= rhs(t, work, mem, P, fw)
+        for i in range(nn):
+            Jm[i, j] = (fw[i] - f0[i]) / d
+    dt = eps * max(abs(t), 1e-3)
+    bad |= rhs(t + dt, y, mem, P, fw)
+    for i in range(nn):
+        ft[i] = (fw[i] - f0[i]) / dt
+    return bad

@@ -3,8 +3,9 @@
 Explicit: good for the perfect and dry-contact mechanisms; the lubricated film is stiff (use
 ``rodas4``). After every accepted step the state is projected on the constraints and element
 memory is advanced; steps are limited so that a contact onset is never skipped — all done by the
-shared loop in :mod:`~jointdyn.integrators.driver` [T110]. Dense output: cubic Hermite from
-k₁ and k₇ (``common.write_dense``).
+shared loop in :mod:`~jointdyn.integrators.driver` [T110], to which :data:`DOPRI5` (the record
+of this method, [T230]) hands the hooks below. Dense output: cubic Hermite from k₁ and k₇
+(:func:`dense`).
 """
 
 from __future__ import annotations
@@ -12,7 +13,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from jointdyn.integrators.common import error_norm
+from jointdyn.integrators.common import error_norm, hermite
+from jointdyn.integrators.driver import ATTEMPT_OK, CTL0, ICTL0, Stepper
 from jointdyn.multibody.dynamics import rhs
 
 C2, C3, C4, C5 = 1 / 5, 3 / 10, 4 / 5, 8 / 9
@@ -27,12 +29,12 @@ E1, E3, E4, E5, E6, E7 = 71 / 57600, -71 / 16695, 71 / 1920, -17253 / 339200, 22
 
 @njit(cache=True)
 def attempt_dopri5(t, h, P, w, rtol, atol):
-    """One trial step from (t, w.y) with k₁ = w.K[0] to w.y1 (k₇ = f(t+h, y₁) in w.K[6]).
+    """One trial step from (t, w.y) with k₁ = w.f0 to w.y1 (k₇ = f(t+h, y₁) in w.K[6]).
 
     Returns (0, error norm) or (2, inf) if a right-hand side failed."""
     y, y1, yt, err, mem, K = w.y, w.y1, w.yt, w.err, w.mem, w.K
     nn = y.shape[0]
-    k1, k2, k3, k4, k5, k6, k7 = K[0], K[1], K[2], K[3], K[4], K[5], K[6]
+    k1, k2, k3, k4, k5, k6, k7 = w.f0, K[1], K[2], K[3], K[4], K[5], K[6]
     bad = 0
     for i in range(nn):
         yt[i] = y[i] + h * A21 * k1[i]
@@ -60,23 +62,6 @@ def attempt_dopri5(t, h, P, w, rtol, atol):
     return 0, error_norm(err, y, y1, rtol, atol)
 
 
-FSAL_PROJECTION = 0.01  # largest projection correction (error-norm units) for which f(y₁) is reused
-
-
-@njit(cache=True)
-def fsal_reusable(y, y1, scratch, rtol, atol, projected):
-    """True if f(t+h, y₁) (k₇) can serve as k₁ of the next step at the accepted state y [T203]:
-    always without projection; after the projection y₁ → y when the correction is at most
-    ``FSAL_PROJECTION`` in the error norm. Reusing k₇ then perturbs the next step by
-    ≈ h·b₁·J·(y − y₁), below 0.1·h‖J‖·0.01 ≤ 3.3e-3 of the tolerance on DOPRI5's stability region
-    (h‖J‖ ≤ 3.3). ``scratch`` (len(y)) is overwritten."""
-    if not projected:
-        return True
-    for i in range(y.shape[0]):
-        scratch[i] = y[i] - y1[i]
-    return error_norm(scratch, y1, y, rtol, atol) <= FSAL_PROJECTION
-
-
 # step-size control of Hairer's DOPRI5 code (Hairer, Nørsett & Wanner 1993, §II.4 and the code's
 # defaults): Lund's PI stabilisation β = 0.04, factors within [0.2, 10], safety 0.9, no growth
 # right after a rejected step [T204]
@@ -84,19 +69,46 @@ BETA = 0.04
 EXPO1 = 0.2 - 0.75 * BETA
 FAC_MIN, FAC_MAX, SAFE = 0.2, 10.0, 0.9
 
+# its own slots of Work.ctl / Work.ictl: the previous error norm, "the last attempt was rejected"
+E_PREV = CTL0
+REJECTED = ICTL0
+
 
 @njit(cache=True)
-def dopri5_accepted(h, en, e_prev, rejected_before):
-    """(next h, error norm to remember) after an accepted step with error norm ``en`` [T204]."""
+def rejected(res, h, en, ctl, ictl, stats, reuse):
+    """Stepper hook: next h after an error-test failure (en > 1), and no growth on the next
+    accepted step [T204]."""
+    if res == ATTEMPT_OK:
+        h *= max(FAC_MIN, SAFE * en**-EXPO1)
+        ictl[REJECTED] = 1
+    return h
+
+
+@njit(cache=True)
+def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
+    """Stepper hook: next h after an accepted step with error norm ``en`` [T204]."""
     e = max(en, 1e-4)
-    fac = SAFE * e**-EXPO1 * e_prev**BETA
+    fac = SAFE * e**-EXPO1 * ctl[E_PREV] ** BETA
     h_new = h * min(FAC_MAX, max(FAC_MIN, fac))
-    if rejected_before:
+    if ictl[REJECTED] == 1:
         h_new = min(h_new, h)
-    return h_new, e
+    ictl[REJECTED] = 0
+    ctl[E_PREV] = e
+    return h_new
 
 
 @njit(cache=True)
-def dopri5_rejected(h, en):
-    """Next h after an error-test failure (en > 1) [T204]."""
-    return h * max(FAC_MIN, SAFE * en**-EXPO1)
+def dense(t, t_new, y, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
+    """Stepper hook: outputs in (t, t_new] by cubic Hermite interpolation from y, k₁ = f(t, y),
+    y₁ and k₇ (4th-order accurate state); returns the next output index."""
+    h = t_new - t
+    while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
+        th = (t_out[iout] - t) / h if h > 0 else 1.0
+        hermite(y, f0, y1, K[6], h, min(max(th, 0.0), 1.0), Y[iout])
+        MEM[iout] = mem
+        iout += 1
+    return iout
+
+
+# k₇ = f(t + h, y₁) is in K[6]: first-same-as-last [T203]
+DOPRI5 = Stepper("dopri5", 5, attempt_dopri5, rejected, accepted, dense, fsal=6, ctl=(1.0,), ictl=(0,))

@@ -6,8 +6,8 @@ system per iteration, both reduced to half the state dimension for y = [q, q̇],
 from the collocation polynomial of the previous step; the Jacobian is kept while the Newton contraction
 θ stays ≤ 0.001 and the LU while h does not change; embedded error estimate (E1 solve of
 γ₀⁻¹-weighted stage combination, refined after a rejection); Gustafsson's predictive step-size
-controller; collocation dense output. The Jacobian comes from :func:`system_jacobian` (one call,
-replaceable by an analytic ``(t, y, f0, mem, P, Jm, ft, work, fw)`` function).
+controller; collocation dense output. The Jacobian is the shared loop's (exact, or forward
+differences); :data:`RADAU5` is the method's record for that loop [T230].
 
 The error test uses the user's rtol and atol as they are (as scipy's ``Radau`` does; RADAU5's
 mapping rtol' = 0.1·rtol^(2/3) is not applied, [T114]).
@@ -18,7 +18,15 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from jointdyn.integrators.rodas4 import jacobian as system_jacobian  # noqa: F401  (the swappable Jacobian)
+from jointdyn.integrators.driver import (
+    AGE,
+    ATTEMPT_DIVERGED,
+    ATTEMPT_OK,
+    ATTEMPT_SINGULAR,
+    CTL0,
+    ICTL0,
+    Stepper,
+)
 from jointdyn.integrators.rodas4 import lu_factor, lu_solve
 from jointdyn.multibody.dynamics import rhs
 
@@ -54,10 +62,10 @@ SAFE = 0.9
 FACL, FACR = 5.0, 0.5
 UROUND = 2.220446049250313e-16
 
-# Work.ctl slots used here (after the driver's T, H, H_PROP, E_PREV)
-H_LU, THETA, FACCON, H_OLD, H_ACC, ERR_ACC, NEWT, HHFAC = 4, 5, 6, 7, 8, 9, 10, 11
-# Work.ictl slots used here (after the driver's IOUT, FAIL, AGE, STARTED)
-REJECTED, HAVE_CONT = 4, 5
+# its own slots of Work.ctl (initial values in RADAU5.ctl) and Work.ictl (RADAU5.ictl); the LU
+# is valid for the step size ctl[H_LU] and the Jacobian number ictl[LU_JAC] (Work.stats[3])
+H_LU, THETA, FACCON, H_OLD, H_ACC, ERR_ACC, NEWT, HHFAC = range(CTL0, CTL0 + 8)
+REJECTED, HAVE_CONT, LU_JAC = range(ICTL0, ICTL0 + 3)
 # Work.K rows: Z1–Z3 (0–2), F1–F3 (3–5), collocation polynomial of the last step (6–8)
 
 
@@ -119,12 +127,13 @@ def attempt_radau5(t, h, P, w, rtol, atol):
     scal, ysc = w.err, w.ysc
     for i in range(nn):
         scal[i] = atol + rtol * (ysc[i] if ysc[i] > 0.0 else abs(y[i]))  # [T114], [T186]
-    if ctl[H_LU] != h:
+    if ctl[H_LU] != h or ictl[LU_JAC] != w.stats[3]:  # a new step size or a new Jacobian
         w.stats[4] += 1
         if not _factor(h, w):
             ctl[H_LU] = -1.0
             return 1, np.inf
         ctl[H_LU] = h
+        ictl[LU_JAC] = w.stats[3]
     fac1 = U1 / h
     alphn = ALPH / h
     betan = BETA / h
@@ -258,26 +267,33 @@ def _quot(en, ctl):
 
 
 @njit(cache=True)
-def radau5_rejected(h, en, w):
-    """New h after an error-test failure; a Jacobian that is not fresh is renewed."""
-    w.ictl[REJECTED] = 1
-    if w.stats[1] == 0:
-        return 0.1 * h
-    return h / _quot(en, w.ctl)
+def rejected(res, h, en, ctl, ictl, stats, reuse):
+    """Stepper hook: after a Newton failure h ← h·HHFAC (set by the attempt), after an error-test
+    failure h ← h/quot (h/10 before the first accepted step); a Jacobian that is not fresh is
+    renewed (not after a singular matrix, whose h the loop halved)."""
+    if res == ATTEMPT_DIVERGED:
+        stats[6] += 1
+        h *= ctl[HHFAC]
+        ictl[REJECTED] = 1
+    elif res == ATTEMPT_OK:
+        ictl[REJECTED] = 1
+        h = 0.1 * h if stats[1] == 0 else h / _quot(en, ctl)
+    if res != ATTEMPT_SINGULAR and ictl[AGE] > 0:
+        ictl[AGE] = reuse
+    return h
 
 
 @njit(cache=True)
-def radau5_accepted(h, h_max, en, w, reuse):
-    """New h after an accepted step (Gustafsson's predictive controller), and the Jacobian /
-    LU reuse decision of RADAU5."""
-    ctl, ictl = w.ctl, w.ictl
+def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
+    """Stepper hook: new h after an accepted step (Gustafsson's predictive controller), and the
+    Jacobian / LU reuse decision of RADAU5."""
     quot = _quot(en, ctl)
-    if w.stats[1] > 1:
+    if stats[1] > 1:
         facgus = (ctl[H_ACC] / h) * (en**2 / ctl[ERR_ACC]) ** 0.25 / SAFE
         quot = max(quot, max(FACR, min(FACL, facgus)))
     ctl[H_ACC] = h
     ctl[ERR_ACC] = max(1e-2, en)
-    hnew = min(h / quot, h_max)
+    hnew = min(h / quot, hmax)
     if ictl[REJECTED] == 1:
         hnew = min(hnew, h)
     ictl[REJECTED] = 0
@@ -285,14 +301,16 @@ def radau5_accepted(h, h_max, en, w, reuse):
     if ctl[THETA] <= THET and QUOT1 <= qt <= QUOT2:
         hnew = h  # keep h: the LU stays valid
     if ctl[THETA] > THET:
-        ictl[2] = reuse  # AGE: a new Jacobian before the next step
+        ictl[AGE] = reuse  # a new Jacobian before the next step
     return hnew
 
 
 @njit(cache=True)
-def store_polynomial(h, w):
-    """After acceptance: collocation polynomial of the step (dense output, next start)."""
-    K = w.K
+def dense(t, t_new, y, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
+    """Stepper hook: the collocation polynomial of the accepted step (also the next Newton
+    start), then the outputs in (t, t_new] from it (order 3 uniformly) [T113]; returns the next
+    output index."""
+    h = t_new - t
     for i in range(K.shape[1]):
         z1, z2, z3 = K[0, i], K[1, i], K[2, i]
         K[6, i] = (z2 - z3) / C2M1
@@ -300,19 +318,32 @@ def store_polynomial(h, w):
         acont3 = (ak - z1 / C1) / C2
         K[7, i] = (ak - K[6, i]) / C1M1
         K[8, i] = K[7, i] - acont3
-    w.ctl[H_OLD] = h
-    w.ictl[HAVE_CONT] = 1
-
-
-@njit(cache=True)
-def write_dense_radau5(t0, t1, y1, K, mem, t_out, iout, Y, MEM):
-    """Outputs in (t0, t1] from the collocation polynomial (order 3 uniformly) [T113]."""
-    h = t1 - t0
-    nn = y1.shape[0]
-    while iout < t_out.shape[0] and t_out[iout] <= t1 + 1e-15 * abs(t1):
-        s = min(max((t_out[iout] - t1) / h, -1.0), 0.0) if h > 0 else 0.0
-        for i in range(nn):
+    ctl[H_OLD] = h
+    ictl[HAVE_CONT] = 1
+    while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
+        s = min(max((t_out[iout] - t_new) / h, -1.0), 0.0) if h > 0 else 0.0
+        for i in range(y1.shape[0]):
             Y[iout, i] = y1[i] + s * (K[6, i] + (s - C2M1) * (K[7, i] + (s - C1M1) * K[8, i]))
         MEM[iout] = mem
         iout += 1
     return iout
+
+
+# The Jacobian is kept until the Newton contraction asks for a new one (accepted), so its
+# reuse count never runs out; with the exact Jacobian it is taken right after the accepted step
+# and gives f(t, y) [T185]. θ, the Newton factor and the previous h start at 1, the LU at none.
+RADAU5 = Stepper(
+    "radau5",
+    5,
+    attempt_radau5,
+    rejected,
+    accepted,
+    dense,
+    stiff=True,
+    reuse=(1 << 60, 1 << 60),
+    jacobian_at_accept=True,
+    ctl=(-1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0),
+    ictl=(0, 0, -1),
+    tolerances=tolerances,
+    stats=("lu_pairs", "newton_iterations", "newton_failures"),
+)

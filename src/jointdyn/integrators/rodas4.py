@@ -8,8 +8,9 @@ Hairer & Wanner, *Solving ODEs II* (1996), §IV.7, coefficients of RODAS (their 
 
 J = ∂f/∂y and f_t are recomputed every step: the exact system Jacobian by default
 (``jacobian.system_jacobian_into``), or forward differences of the compiled right-hand side
-(:func:`jacobian` here, 2n + 1 extra evaluations for n = dim y); W is factorised once per step
-(dense LU with partial pivoting).
+(``common.fd_jacobian``, 2n + 1 extra evaluations for n = dim y); W is factorised once per step
+(dense LU with partial pivoting). :data:`RODAS4` is the method's record for the shared step loop
+[T230].
 
 Accuracy on stiff films [T217–T219]: RODAS has stage order 1, and on a stiff element driven by
 the slow motion (a small-clearance film) the error of its *force* converges at order 1 in h, not
@@ -25,6 +26,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn.integrators.common import error_norm_scaled
+from jointdyn.integrators.driver import ATTEMPT_OK, Stepper
 from jointdyn.multibody.dynamics import rhs
 
 GAMMA = 0.25
@@ -111,51 +113,6 @@ def lu_solve(W, piv, b):
 
 
 @njit(cache=True)
-def write_dense_rodas(t0, y0, t1, y1, K, mem, t_out, iout, Y, MEM):
-    """Write every output time in (t0, t1] with the stiffly accurate continuous extension [T13]."""
-    h = t1 - t0
-    nn = y0.shape[0]
-    while iout < t_out.shape[0] and t_out[iout] <= t1 + 1e-15 * abs(t1):
-        th = min(max((t_out[iout] - t0) / h, 0.0), 1.0) if h > 0 else 1.0
-        for i in range(nn):
-            d1 = 0.0
-            d2 = 0.0
-            for j in range(5):
-                d1 += H[0, j] * K[j, i]
-                d2 += H[1, j] * K[j, i]
-            Y[iout, i] = (1.0 - th) * y0[i] + th * (y1[i] + (1.0 - th) * (d1 + th * d2))
-        MEM[iout] = mem
-        iout += 1
-    return iout
-
-
-@njit(cache=True)
-def jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
-    """Forward-difference ∂f/∂y (columns) and ∂f/∂t. Returns the number of evaluations."""
-    nn = y.shape[0]
-    n = nn // 2
-    eps = 1.4901161193847656e-08
-    bad = 0
-    for j in range(nn):
-        scale = abs(y[j])
-        if j >= n:
-            scale = max(scale, 1e-3)
-        else:
-            scale = max(scale, 1e-5)
-        d = eps * scale
-        work[:] = y
-        work[j] += d
-        bad |= rhs(t, work, mem, P, fw)
-        for i in range(nn):
-            Jm[i, j] = (fw[i] - f0[i]) / d
-    dt = eps * max(abs(t), 1e-3)
-    bad |= rhs(t + dt, y, mem, P, fw)
-    for i in range(nn):
-        ft[i] = (fw[i] - f0[i]) / dt
-    return bad
-
-
-@njit(cache=True)
 def attempt_rodas4(t, h, P, w, rtol, atol):
     """One trial step from (t, w.y) with f0 = w.f0 and the Jacobian in w.Jm, w.ft to w.y1
     (stages in w.K). Returns (0, error norm), (1, inf) if W is singular, (2, inf) if a
@@ -192,3 +149,42 @@ def attempt_rodas4(t, h, P, w, rtol, atol):
     if bad != 0:
         return 2, np.inf
     return 0, error_norm_scaled(K[5], y, y1, rtol, atol, w.ysc)
+
+
+@njit(cache=True)
+def rejected(res, h, en, ctl, ictl, stats, reuse):
+    """Stepper hook: after an error-test failure h ← h·max(0.2, 0.9‖err‖^(−1/4)) [T110]."""
+    if res == ATTEMPT_OK:
+        h *= max(0.2, 0.9 * en**-0.25)
+    return h
+
+
+@njit(cache=True)
+def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
+    """Stepper hook: the elementary controller h ← h·min(6, max(0.2, 0.9‖err‖^(−1/4))) [T110]."""
+    e_now = max(en, 1e-10)
+    return h * min(6.0, max(0.2, 0.9 * e_now**-0.25))
+
+
+@njit(cache=True)
+def dense(t, t_new, y0, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
+    """Stepper hook: outputs in (t, t_new] from the stiffly accurate continuous extension [T13];
+    returns the next output index."""
+    h = t_new - t
+    nn = y0.shape[0]
+    while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
+        th = min(max((t_out[iout] - t) / h, 0.0), 1.0) if h > 0 else 1.0
+        for i in range(nn):
+            d1 = 0.0
+            d2 = 0.0
+            for j in range(5):
+                d1 += H[0, j] * K[j, i]
+                d2 += H[1, j] * K[j, i]
+            Y[iout, i] = (1.0 - th) * y0[i] + th * (y1[i] + (1.0 - th) * (d1 + th * d2))
+        MEM[iout] = mem
+        iout += 1
+    return iout
+
+
+# a fresh Jacobian for every step (reuse 1 with either kind); stiff: takes the clearance scales
+RODAS4 = Stepper("rodas4", 4, attempt_rodas4, rejected, accepted, dense, stiff=True, reuse=(1, 1))

@@ -8,7 +8,7 @@ the saddle-point system at fixed (q̈, λ) gives [T101]
 solved with the same Schur complement S = Φ_q M⁻¹ Φ_qᵀ as the accelerations. ∂Q comes from the
 force elements (:mod:`jointdyn.forces.element_jacobians`), the constraint terms from the row
 Hessians of [T102, T103] (revolute, translational; angle rows are linear).
-:func:`system_jacobian` has the signature and meaning of ``integrators.rodas4.jacobian``.
+:func:`system_jacobian` has the signature and meaning of ``integrators.common.fd_jacobian``.
 """
 
 from __future__ import annotations
@@ -134,7 +134,7 @@ def jacobian_work_size(n, m, nf):
 @njit(cache=True)
 def system_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
     """Exact Jm = ∂f/∂y (2n×2n) and ft = ∂f/∂t at (t, y) [T101–T104]; same signature and meaning
-    as ``integrators.rodas4.jacobian`` (f0, work, fw are unused). Allocates its scratch; the
+    as ``integrators.common.fd_jacobian`` (f0, work, fw are unused). Allocates its scratch; the
     integrators call :func:`system_jacobian_into` with a scratch array they keep. Returns a status
     (0 = ok)."""
     n = y.shape[0] // 2

@@ -25,7 +25,7 @@ from jointdyn.integrators.common import (
     RHS_FAILED,
     STEP_TOO_SMALL,
 )
-from jointdyn.integrators.driver import IOUT, METHODS, RUNNING, T, drive, method_tolerances, new_work
+from jointdyn.integrators.driver import IOUT, RUNNING, Stepper, T, drive, method_tolerances, new_work
 from jointdyn.integrators.weights import AUTO_CLEARANCE_RATIO, clearance_scale
 from jointdyn.multibody.dynamics import outputs
 from jointdyn.multibody.system import System
@@ -176,17 +176,17 @@ def resolve_solver(system: System, name: str) -> str:
     return "radau5" if any(getattr(e, "STIFF", False) for e in system.elements) else "dopri5"
 
 
-def _integrate_compiled(method, P, y0, mem0, config, t_out, progress, step_budget, ysc=None, rtol=None):
+def _integrate_compiled(stepper, P, y0, mem0, config, t_out, progress, step_budget, ysc=None, rtol=None):
     """Drive a compiled solver in slices of bounded wall time; returns (Work, status). ``ysc``,
     ``rtol``: fixed error scales and the rtol they go with (None: |y_i| and config.rtol) [T186]."""
     exact = config.jacobian == "exact"
-    w = new_work(method, y0, mem0, t_out[0], t_out, config.first_step, exact, ysc)
-    rtol, atol = method_tolerances(method, config.rtol if rtol is None else rtol, config.atol)
+    w = new_work(stepper, y0, mem0, t_out[0], t_out, config.first_step, exact, ysc)
+    rtol, atol = method_tolerances(stepper, config.rtol if rtol is None else rtol, config.atol)
     budget = int(step_budget) if step_budget else 16
     status = RUNNING  # the first call of drive() starts the integration (one compiled call less)
     while status == OK or status == RUNNING:
         tc = time.perf_counter()
-        status = drive(method, P, t_out, rtol, atol, config.max_step, config.max_steps, True, budget, w)
+        status = drive(stepper, P, t_out, rtol, atol, config.max_step, config.max_steps, True, budget, w)
         dt = time.perf_counter() - tc
         if status != RUNNING:
             if status == OK and _report(progress, 1.0):
@@ -249,7 +249,8 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
     a = config.baumgarte if config.baumgarte is not None else (0.0 if projects else 1000.0)
     P = system.packed(a)
     t_out = np.linspace(t_start, t_start + config.t_end, config.n_out)
-    if config.jacobian == "exact" and solver in ("rodas4", "ros34pw2", "radau5"):
+    compiled = runner if isinstance(runner, Stepper) else None
+    if config.jacobian == "exact" and compiled is not None and compiled.reuse is not None:
         from jointdyn.forces.element_jacobians import differenced_laws, fallback_elements
 
         fd = fallback_elements(system)
@@ -267,17 +268,19 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
             )
     ysc, rtol = None, config.rtol
     if config.error_scale == "clearance":
-        if solver not in ("rodas4", "ros34pw2", "radau5"):
+        if compiled is None or not compiled.stiff:
+            stiff = [k for k, (r, _, _) in SOLVERS.items() if isinstance(r, Stepper) and r.stiff]
             raise ValueError(
-                f"SimConfig.error_scale = 'clearance' needs solver rodas4, ros34pw2 or radau5, not {solver!r}"
+                f"SimConfig.error_scale = 'clearance' needs solver {', '.join(stiff[:-1])} or {stiff[-1]}, "
+                f"not {solver!r}"
             )
         ysc = clearance_scale(system, config.t_end)
     elif config.error_scale == "auto" and config.solver == "auto" and solver == "radau5":
         ysc, rtol = clearance_scale(system, config.t_end), AUTO_CLEARANCE_RATIO * config.rtol  # [T188]
     t0 = time.perf_counter()
-    if solver in METHODS:
+    if compiled is not None:
         w, status = _integrate_compiled(
-            METHODS[solver], P, y0, mem0, config, t_out, progress, step_budget, ysc, rtol
+            compiled, P, y0, mem0, config, t_out, progress, step_budget, ysc, rtol
         )
         nw, stats = int(w.ictl[IOUT]), w.stats
         Y, MEM = w.Y[:nw], w.MEM[:nw]
@@ -334,11 +337,9 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
             "rejected_steps": int(stats[2]),
             "jacobians": int(stats[3]),
         }
-        | (  # radau5 counts its factorisations and Newton iterations (driver Work.stats 4–6)
-            {"lu_pairs": int(stats[4]), "newton_iterations": int(stats[5]), "newton_failures": int(stats[6])}
-            if solver == "radau5"
-            else {}
-        ),
+        # a compiled method's own counters (driver Work.stats[4:]; radau5: LU pairs, Newton iterations
+        # and failures)
+        | {k: int(v) for k, v in zip(compiled.stats if compiled else (), stats[4:])},
         wall_time=wall,
         config={f.name: getattr(config, f.name) for f in fields(config)}
         | {"baumgarte": a, "solver": solver}
