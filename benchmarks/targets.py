@@ -114,7 +114,8 @@ def main(argv=None):
             cli["alshaer2005_first"][2] <= 15,
         ),
         _row(
-            f"{first} of a four-bar model file with a finite (Reynolds) bearing, after the row above (same home)",
+            f"{first} of a four-bar model file with a finite (Reynolds) bearing,"
+            " after the row above (same home)",
             "≤ 20 s CPU",
             f"{_cpu(cli['finite_file_first'])}; warm {_cpu(cli['finite_file_warm'])}",
             cli["finite_file_first"][2] <= 20,
