@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 
-from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.runs import run_shipped
 from jointdyn.studies.sweep import SweepSpec, run_sweep
 
 BASE = {"model": "slider-crank", "joint": "alshaer2005", "revs": 4, "rtol": 1e-6, "atol": 1e-10}
@@ -35,9 +35,9 @@ def main(argv=None):
     )
     singles = []
     for _ in range(5):
-        run_slider_crank("alshaer2005", 4, rtol=1e-6, atol=1e-10)  # warm
+        run_shipped("slider-crank", "alshaer2005", 4, rtol=1e-6, atol=1e-10)  # warm
         t0 = time.perf_counter()
-        run_slider_crank("alshaer2005", 4, rtol=1e-6, atol=1e-10)
+        run_shipped("slider-crank", "alshaer2005", 4, rtol=1e-6, atol=1e-10)
         singles.append(time.perf_counter() - t0)
     single = statistics.median(singles)
     with tempfile.TemporaryDirectory() as d:

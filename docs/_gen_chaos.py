@@ -21,7 +21,7 @@ FIG = Path(__file__).resolve().parent / "figures"
 def poincare(revs: int = 220, transient: int = 20):
     from jointdyn.models.slider_crank import SPEED
     from jointdyn.studies.poincare import journal_section, plot_sections
-    from jointdyn.studies.runs import run_slider_crank
+    from jointdyn.studies.runs import run_shipped
 
     T = 2 * math.pi / SPEED
     secs = {}
@@ -29,7 +29,7 @@ def poincare(revs: int = 220, transient: int = 20):
         ("alshaer2005", "lubricated (π-film, μ = 0.4 Pa·s)", {"rtol": 1e-8, "atol": 1e-12}),
         ("dry", "dry (c_r = 0.9)", {"rtol": 1e-8, "atol": 1e-11}),
     ):
-        res, _, _ = run_slider_crank(joint, revs, samples_per_rev=72, **kw)
+        res, _, _ = run_shipped("slider-crank", joint, revs, samples_per_rev=72, **kw)
         sec = journal_section(res, transient=transient * T)
         secs[label] = sec
         x, y = sec.values["ex_over_c"], sec.values["ey_over_c"]
@@ -114,20 +114,29 @@ def lyapunov_tau():
 
 
 def spectrum():
-    from jointdyn.studies.runs import run_slider_crank
+    from jointdyn.studies.runs import run_shipped
     from jointdyn.studies.spectra import plot_spectra, run_spectra
 
-    res, _, _ = run_slider_crank("dry", 60, samples_per_rev=720, rtol=1e-8, atol=1e-11)
+    res, _, _ = run_shipped("slider-crank", "dry", 60, samples_per_rev=720, rtol=1e-8, atol=1e-11)
     sp = run_spectra(res, transient_revs=10, slider="slider")
     plot_spectra(sp, FIG / "chaos_spectrum_dry.png", 40, "dry slider-crank, revolutions 10–60")
-    print("spectrum: harmonic 1 of the slider acceleration", sp["slider_acceleration"][sp["harmonic"] == 1][0])
+    print(
+        "spectrum: harmonic 1 of the slider acceleration", sp["slider_acceleration"][sp["harmonic"] == 1][0]
+    )
 
 
 def ensemble():
-    from jointdyn.studies.ensemble import ensemble_table, slider_crank_ensemble
+    from jointdyn.studies.ensemble import ensemble as run_ensemble
+    from jointdyn.studies.ensemble import ensemble_table
 
-    r = slider_crank_ensemble(
-        "dry", rtols=(1e-7, 1e-8, 1e-9), replicas=2, revs=110, transient_revs=10, workers=2
+    r = run_ensemble(
+        "slider-crank",
+        {"joint": "dry"},
+        rtols=(1e-7, 1e-8, 1e-9),
+        replicas=2,
+        revs=110,
+        transient_revs=10,
+        workers=2,
     )
     for row in ensemble_table(r):
         print(json.dumps(row))

@@ -14,7 +14,7 @@ from jointdyn.models import slider_crank as sc
 from jointdyn.studies.ensemble import band, convergence, revolution_stats
 from jointdyn.studies.lyapunov import batch_stderr, benettin, system_lyapunov
 from jointdyn.studies.poincare import journal_relative_state, plane_crossing, stroboscopic
-from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.runs import run_shipped
 from jointdyn.studies.spectra import amplitude_spectrum, run_spectra
 
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
@@ -108,8 +108,8 @@ def test_journal_relative_velocity_matches_finite_differences():
     for spr in (1800, 3600):
         # radau5 named: state error scales ([T186]), whose tolerance-level noise is the one measured
         # above (auto's clearance scales at 300·rtol [T188] leave more)
-        res, _, _ = run_slider_crank(
-            "alshaer2005", 1.0, samples_per_rev=spr, solver="radau5", rtol=1e-8, atol=1e-12
+        res, _, _ = run_shipped(
+            "slider-crank", "alshaer2005", 1.0, samples_per_rev=spr, solver="radau5", rtol=1e-8, atol=1e-12
         )
         st = journal_relative_state(res, "piston_pin")
         assert np.allclose(st["ex"], res.element("piston_pin", "ex"), atol=1e-15)
@@ -124,7 +124,7 @@ def test_spectrum_of_the_perfect_slider_crank_matches_the_kinematics():
     # slider x(φ) = r cos φ + √(l² − r² sin² φ): the rod term has only even harmonics, so
     # ẍ has harmonic 1 of amplitude r ω² exactly and no odd harmonics ≥ 3 [T130]; harmonic 2
     # from the Fourier coefficient of the exact x(φ) by a 4096-point trapezoidal rule (spectral)
-    res, _, _ = run_slider_crank("perfect", 4.0, samples_per_rev=720, rtol=1e-11, atol=1e-13)
+    res, _, _ = run_shipped("slider-crank", "perfect", 4.0, samples_per_rev=720, rtol=1e-11, atol=1e-13)
     sp = run_spectra(res, transient_revs=1, slider="slider")
     h, a = sp["harmonic"], sp["slider_acceleration"]
     r, l, w = sc.CRANK_LENGTH, sc.ROD_LENGTH, sc.SPEED
@@ -146,7 +146,7 @@ def test_amplitude_spectrum_of_a_cosine():
 
 
 def test_revolution_stats_of_the_periodic_perfect_joint():
-    res, _, summ = run_slider_crank("perfect", 3.0, samples_per_rev=720)
+    res, _, summ = run_shipped("slider-crank", "perfect", 3.0, samples_per_rev=720)
     st = revolution_stats(res, transient_revs=1, element=None)
     assert st["peak_moment"].size == 2
     assert np.allclose(st["peak_moment"], summ["peak_moment"], rtol=1e-6)  # periodic: every revolution alike
@@ -156,7 +156,7 @@ def test_revolution_stats_of_the_periodic_perfect_joint():
 
 
 def test_revolution_stats_count_impacts_of_the_dry_joint():
-    res, _, summ = run_slider_crank("dry", 3.0, samples_per_rev=720, rtol=1e-8, atol=1e-11)
+    res, _, summ = run_shipped("slider-crank", "dry", 3.0, samples_per_rev=720, rtol=1e-8, atol=1e-11)
     st = revolution_stats(res, 0)
     assert st["impacts"].sum() == summ["impacts"]  # the counter is exact over accepted steps
     assert st["max_penetration"].max() <= summ["max_penetration"] + 1e-15  # samples ≤ the peak of δ(t) [T202]
@@ -263,7 +263,7 @@ def test_sweep_array_output_is_the_runs_own_section(tmp_path):
     # a sweep case with [output.poincare] returns the stroboscopic section of its run: the same
     # numbers (bit for bit: same deterministic run) as sectioning a direct run [T136]
     from jointdyn.studies.bifurcation import section_arrays
-    from jointdyn.studies.runs import run_slider_crank
+    from jointdyn.studies.runs import run_shipped
     from jointdyn.studies.sweep import run_sweep
     from jointdyn.studies.sweep_spec import SweepSpec
 
@@ -272,8 +272,8 @@ def test_sweep_array_output_is_the_runs_own_section(tmp_path):
     spec = SweepSpec(base=base, grid={"clearance": [3e-4]}, arrays={"poincare": poincare})
     ds = run_sweep(spec, tmp_path / "s", workers=1)
     assert ds["poincare_ex_over_c"].dims == ("clearance", "rev") and list(ds["rev"].values) == [1, 2]
-    res, _, _ = run_slider_crank(
-        "dry", 3, model_kw={"clearance": 3e-4}, rtol=1e-7, atol=1e-10, samples_per_rev=72
+    res, _, _ = run_shipped(
+        "slider-crank", "dry", 3, model_kw={"clearance": 3e-4}, rtol=1e-7, atol=1e-10, samples_per_rev=72
     )
     direct = section_arrays(res, 1, 2, 0.0)
     for k in ("ex_over_c", "eydot_over_cw", "impacts_per_rev"):

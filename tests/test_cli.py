@@ -128,9 +128,9 @@ def test_plot_and_animate_a_saved_run(tmp_path):
 
 def test_saved_file_reads_back_as_the_in_memory_dataset(tmp_path):
     from jointdyn.simulation.results import load
-    from jointdyn.studies.runs import run_slider_crank
+    from jointdyn.studies.runs import run_shipped
 
-    res, _, _ = run_slider_crank("dry", 0.1)
+    res, _, _ = run_shipped("slider-crank", "dry", 0.1)
     res.save(tmp_path / "r.nc")
     a, b = load(tmp_path / "r.nc"), res.to_dataset()
     for v in b.data_vars:

@@ -246,7 +246,7 @@ def test_a_model_without_an_angle_driver_says_so_in_one_line(tmp_path):
 
 
 def test_run_slider_crank_speed_in_rpm(tmp_path):
-    from jointdyn.studies.runs import run_slider_crank
+    from jointdyn.studies.runs import run_shipped
     from jointdyn.units import rpm
 
     out = tmp_path / "sc"
@@ -254,7 +254,7 @@ def test_run_slider_crank_speed_in_rpm(tmp_path):
     assert r.exit_code == 0, r.output
     s = json.loads((out / "summary.json").read_text())
     assert s["t_end"] == pytest.approx(60 / 3000, rel=1e-14)  # one crank revolution at 3000 rpm
-    _, _, lib = run_slider_crank("perfect", 1.0, model_kw={"speed": rpm(3000)})
+    _, _, lib = run_shipped("slider-crank", "perfect", 1.0, model_kw={"speed": rpm(3000)})
     assert s["peak_moment"] == lib["peak_moment"] == lib["metrics"]["drive.moment_peak"]
     r = runner.invoke(app, ["run", "slider-crank", "--speed", "0", "--out", str(tmp_path / "z")])
     assert r.exit_code == 2 and "--speed" in r.output and "rpm" in r.output

@@ -9,7 +9,7 @@ from test_integrators import oscillator
 from jointdyn.errors import SimulationError
 from jointdyn.integrators.accuracy import force_resolution
 from jointdyn.integrators.common import FORCE_UNRESOLVED
-from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.runs import run_shipped
 
 
 def test_force_resolution_of_a_spring_damper_closed_form():
@@ -35,7 +35,7 @@ def test_too_viscous_film_stops_with_a_named_element():
     """μ = 1e6 Pa·s at rtol 1e-8: δF ≈ the whole force (measured 0.99 × peak); the crank
     moment was 2.1× the rigid-joint value and the run used to succeed."""
     with pytest.raises(SimulationError) as ei:
-        run_slider_crank("alshaer2005", 0.1, model_kw={"viscosity": 1e6})
+        run_shipped("slider-crank", "alshaer2005", 0.1, model_kw={"viscosity": 1e6})
     msg = str(ei.value)
     assert "'piston_pin'" in msg and "rtol" in msg and "t = " in msg
     assert ei.value.results.status == FORCE_UNRESOLVED
@@ -45,8 +45,10 @@ def test_tightened_tolerances_give_the_rigid_limit():
     """Following the advice (rtol 1e-11, atol 1e-14) the same film is resolved and the crank
     moment approaches the ideal joint's, the independent μ → ∞ limit."""
     t0 = time.perf_counter()
-    res, cols, _ = run_slider_crank("alshaer2005", 0.1, model_kw={"viscosity": 1e6}, rtol=1e-11, atol=1e-14)
-    _, ref, _ = run_slider_crank("perfect", 0.1, rtol=1e-11, atol=1e-14)
+    res, cols, _ = run_shipped(
+        "slider-crank", "alshaer2005", 0.1, model_kw={"viscosity": 1e6}, rtol=1e-11, atol=1e-14
+    )
+    _, ref, _ = run_shipped("slider-crank", "perfect", 0.1, rtol=1e-11, atol=1e-14)
     dM = np.abs(cols["crank_moment"] - ref["crank_moment"]).max() / np.abs(ref["crank_moment"]).max()
     print(f"max|ΔM|/peak = {dM:.3g}, {time.perf_counter() - t0:.1f} s")
     # measured 3.5e-4 (the film's residual compliance at μ = 1e6 Pa·s, e/c ≈ 1e-6; at μ = 1e3 it

@@ -9,7 +9,7 @@ from jointdyn.forces.journal import ClearanceJoint
 from jointdyn.models import slider_crank as sc
 from jointdyn.multibody.model import Model
 from jointdyn.simulation.simulate import SimConfig, simulate
-from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.runs import run_shipped
 
 C, HA, MU = 5e-5, 1e-6, 1e-3  # tight bearing, 1 µm asperities, a very thin oil [m, m, Pa·s]
 
@@ -22,7 +22,8 @@ def law(c):
 
 
 def test_lubricated_joint_runs_through_the_mixed_regime():
-    res, cols, s = run_slider_crank(
+    res, cols, s = run_shipped(
+        "slider-crank",
         "alshaer2005",
         1.0,
         model_kw=dict(clearance=C, viscosity=MU, contact=law(C), asperity_height=HA),
@@ -93,9 +94,9 @@ def test_friction_brakes_the_spin_and_dissipates(friction):
 def test_dry_joint_approaches_the_perfect_joint_as_clearance_shrinks():
     """Measured (1 revolution, rtol 1e-7): RMS |M_dry − M_perfect| = 108, 42.5, 15.8, 4.6, 0.83 N·m
     for c = 500, 100, 20, 5, 1 µm. Checked here at 20 and 5 µm with ~1.7× margins."""
-    _, perfect, _ = run_slider_crank("perfect", 1.0)
+    _, perfect, _ = run_shipped("slider-crank", "perfect", 1.0)
     rms = {}
     for c in (2e-5, 5e-6):
-        _, cols, _ = run_slider_crank("dry", 1.0, model_kw={"clearance": c}, rtol=1e-7, atol=1e-11)
+        _, cols, _ = run_shipped("slider-crank", "dry", 1.0, model_kw={"clearance": c}, rtol=1e-7, atol=1e-11)
         rms[c] = float(np.sqrt(np.mean((cols["crank_moment"] - perfect["crank_moment"]) ** 2)))
     assert rms[5e-6] < rms[2e-5] < 25.0 and rms[5e-6] < 8.0

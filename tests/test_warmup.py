@@ -15,13 +15,13 @@ from jointdyn.cli import app
 RUN = """
 import json
 from numba.core import event
-from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.runs import run_shipped
 n = []
 class C(event.Listener):
     def on_start(self, ev): n.append(1)
     def on_end(self, ev): pass
 event.register("numba:compile", C())
-run_slider_crank("perfect", revs=0.1)
+run_shipped("slider-crank", "perfect", revs=0.1)
 print(len(n))
 """
 

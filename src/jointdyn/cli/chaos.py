@@ -145,20 +145,23 @@ def _value(text: str):
 
 
 def _model_system(model: str, set_: list[str], joint: str, shipped: dict):
-    """The System of MODEL: a model file with ``--set`` overrides, or the slider-crank with
-    ``joint`` and its builder arguments ``shipped`` (None values = defaults)."""
+    """The System of MODEL: a model file with ``--set`` keys, or a shipped model with variant
+    ``joint``, its builder arguments ``shipped`` (None values = defaults) and ``--set`` keys."""
+    from jointdyn.studies.runs import model_system
+
+    keys = {}
+    for item in set_:
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise ValueError(f"--set {item!r}: expected KEY=VALUE")
+        keys[key.strip()] = _value(value)
     if model.endswith(".toml") or Path(model).is_file():
-        from jointdyn.io.modelfile import load_model
+        return model_system(model, keys)[0]
+    from jointdyn.models.catalog import shipped as catalog
 
-        return load_model(model, set_)[0].compile()
-    if set_:
-        raise ValueError("--set applies to model files only")
-    if model != "slider-crank":
-        raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
-    from jointdyn.models import slider_crank_args as options
-
+    m = catalog(model)
     given = {k: v for k, v in shipped.items() if v is not None}
-    return options.shipped_model(joint, given).compile()
+    return model_system(model, {m.variant_arg: joint, **given, **keys})[0]
 
 
 def lyapunov(
@@ -180,7 +183,7 @@ def lyapunov(
     atol: float = typer.Option(1e-12, help="absolute tolerance [SI]"),
     discard: int = typer.Option(10, help="first renormalisation intervals left out of the average [-]"),
     seed: int = typer.Option(1, help="seed of the initial deviation direction"),
-    set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
+    set_: list[str] = typer.Option([], "--set", help="model-file key a.b.c=VALUE (repeatable)"),
     out: Path = typer.Option(Path("out/lyapunov"), help="output directory"),
     overwrite: bool = typer.Option(False, help="replace jointdyn's files of a previous result in --out"),
 ):
@@ -278,9 +281,11 @@ def spectrum(
 
 
 def ensemble(
-    model: str = typer.Argument("slider-crank", help="slider-crank or a model file FILE.toml"),
-    joint: str = typer.Option("dry", help="slider-crank piston-pin joint kind"),
-    set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
+    model: str = typer.Argument(
+        "slider-crank", help="a shipped model (slider-crank) or a model file FILE.toml"
+    ),
+    joint: str = typer.Option("dry", help="shipped model's variant (slider-crank: piston-pin joint kind)"),
+    set_: list[str] = typer.Option([], "--set", help="model-file key a.b.c=VALUE (repeatable)"),
     rtols: str = typer.Option("1e-7,1e-8,1e-9", help="comma-separated relative tolerances [-]"),
     replicas: int = typer.Option(1, help="runs per tolerance (replica r > 0: perturbed initial velocities)"),
     revs: int = typer.Option(60, help="revolutions of the first angle driver per run [rev]"),
@@ -297,18 +302,18 @@ def ensemble(
 
     try:
         OutputDir(out, "ensemble", {}).check(overwrite)
+        kw: dict = {}
+        for item in set_:
+            key, sep, value = item.partition("=")
+            if not sep:
+                raise ValueError(f"--set {item!r}: expected KEY=VALUE")
+            kw[key.strip()] = _value(value)
         if model.endswith(".toml"):
-            kw: dict = {}
-            for item in set_:
-                key, sep, value = item.partition("=")
-                if not sep:
-                    raise ValueError(f"--set {item!r}: expected KEY=VALUE")
-                kw[key.strip()] = _value(value)
             name = model
-        elif set_:
-            raise ValueError("--set applies to model files only")
         else:
-            kw, name = {"joint": joint}, f"slider-crank ({joint})"
+            from jointdyn.models.catalog import shipped
+
+            kw, name = {shipped(model).variant_arg: joint, **kw}, f"{model} ({joint})"
         r = run_ensemble(
             model,
             kw,

@@ -9,19 +9,21 @@ from rich.markup import escape
 from rich.table import Table
 
 from jointdyn.cli.common import _one_line_errors, _progress, app, console
-from jointdyn.models import slider_crank_args as options
+from jointdyn.models.catalog import DEFAULT, SHIPPED
 from jointdyn.studies.memory import check_memory
 
-_RA = options.run_args()
+#: the short options of ``run`` are those of the default shipped model
+_M = SHIPPED[DEFAULT]
+_RA = _M.run_args()
 
 
 def _arg_help(name: str, text: str) -> str:
-    """Help of a slider-crank builder argument: its unit and default from the builder."""
-    default, unit = options.builder_args()[name]
+    """Help of a shipped model's builder argument: its unit and default from the builder."""
+    default, unit = _M.numeric_args()[name]
     return f"{text} [{unit}] (default {default:.6g})"
 
 
-_JOINT_HELP = "piston-pin joint kind: " + ", ".join(options.joints())
+_JOINT_HELP = "piston-pin joint kind: " + ", ".join(_M.variants())
 
 
 def _solver_help() -> str:
@@ -30,14 +32,14 @@ def _solver_help() -> str:
     return "integrator: auto (radau5 for a lubricated joint, else dopri5), " + ", ".join(SOLVERS)
 
 
-#: CLI spelling of the slider-crank builder arguments
-OPTION_NAMES = {k: "--" + k.replace("_", "-") for k in (*options.builder_args(), *options.FLAGS)}
-OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("joint", "revs", "samples_per_rev", "rtol", "atol")}
+#: CLI spelling of the shipped model's builder arguments and run settings
+OPTION_NAMES = {k: "--" + k.replace("_", "-") for k in (*_M.arguments(), "shear", "bushing")}
+OPTION_NAMES |= {k: "--" + k.replace("_", "-") for k in ("revs", "samples_per_rev", "rtol", "atol")}
 
 
 @app.command()
 def run(
-    model: str = typer.Argument(..., help="shipped model name (slider-crank) or a model file FILE.toml"),
+    model: str = typer.Argument(..., help=f"shipped model ({', '.join(SHIPPED)}) or a model file FILE.toml"),
     joint: str = typer.Option(None, help=_JOINT_HELP + " (default perfect)"),
     revs: float = typer.Option(None, help=f"crank revolutions to simulate [rev] (default {_RA['revs']:g})"),
     samples_per_rev: int = typer.Option(
@@ -68,7 +70,9 @@ def run(
     restitution: float = typer.Option(
         None, help=_arg_help("restitution", "dry joint: coefficient of restitution")
     ),
-    set_: list[str] = typer.Option([], "--set", help="model file override a.b.c=VALUE (repeatable)"),
+    set_: list[str] = typer.Option(
+        [], "--set", help="model-file key a.b.c=VALUE, for a model file or a shipped model (repeatable)"
+    ),
 ):
     """Simulate a shipped mechanism or a model file; write results.nc, timeseries.csv,
     summary.json, figures and manifest.json."""
@@ -98,9 +102,7 @@ def run(
         if is_file:
             if given:
                 names = ", ".join(OPTION_NAMES.get(k, "--" + k) for k in given)
-                raise ValueError(
-                    f"{names}: apply to the shipped slider-crank; for a model file use --set a.b=VALUE"
-                )
+                raise ValueError(f"{names}: apply to a shipped model; for a model file use --set a.b=VALUE")
             from jointdyn.studies.runs import prepare_model_file, run_model_file
 
             prepared = prepare_model_file(model, set_)
@@ -117,54 +119,55 @@ def run(
                 f"evaluations, {res.wall_time:.3f} s; wrote {escape(str(out))}/: {files}"
             )
             return
-        if set_:
-            raise ValueError("--set applies to model files only")
-        if model != "slider-crank":
-            raise ValueError(
-                f"MODEL {model!r}: unknown shipped model and not a file; valid: slider-crank or FILE.toml"
-            )
+        from jointdyn.models.catalog import shipped
+
+        shipped(model)  # one line for an unknown name
         if "speed" in given:  # rpm only at this edge, rad/s inside
             from jointdyn.core.checks import check
             from jointdyn.units import rpm
 
             check("--speed", given["speed"], "rpm", "!= 0")
             given["speed"] = rpm(given["speed"])
-        _run_slider_crank(given, out, overwrite)
+        _run_shipped(model, given, set_, out, overwrite)
 
 
-def _run_slider_crank(given: dict, out: Path, overwrite: bool) -> None:
+def _run_shipped(name: str, given: dict, set_: list[str], out: Path, overwrite: bool) -> None:
     from jointdyn.integrators import SOLVERS
     from jointdyn.io.rundir import OutputDir
-    from jointdyn.models.slider_crank import SPEED, slider_crank
-    from jointdyn.studies.runs import run_slider_crank, slider_crank_config
+    from jointdyn.models.catalog import shipped
+    from jointdyn.studies.runs import run_shipped
 
-    joint = given.pop("joint", "perfect")
-    ra = options.run_args()
+    m = shipped(name)
+    variant = given.pop(m.variant_arg, m.default_variant)
+    ra = m.run_args()
     run_kw = {k: given.pop(k) for k in ("solver", "rtol", "atol", "samples_per_rev") if k in given}
     revs = given.pop("revs", ra["revs"])
-    model_kw = options.slider_crank_args(joint, given, OPTION_NAMES)
-    options.check_run(
+    model_kw = m.model_kw(variant, given, OPTION_NAMES)
+    m.check_run(
         revs, run_kw.get("samples_per_rev", ra["samples_per_rev"]), **_tols(run_kw), names=OPTION_NAMES
     )
     if run_kw.get("solver", "auto") not in ("auto", *SOLVERS):
         raise ValueError(f"--solver {run_kw['solver']!r}: unknown; valid: auto, {', '.join(SOLVERS)}")
-    cfg = slider_crank_config(joint, revs, speed=model_kw.get("speed", SPEED), **run_kw)
-    check_memory(slider_crank(joint, **model_kw), cfg.n_out, "--revs × --samples-per-rev")
-    spec = {"model": "slider-crank", "joint": joint, "revs": revs, **run_kw} | {
+    model, cfg = m.setup(variant, revs, model_kw, **run_kw)
+    check_memory(model, cfg.n_out, "--revs × --samples-per-rev")
+    spec = {"model": name, m.variant_arg: variant, "revs": revs, **run_kw} | {
         k: given[k] for k in given if k not in run_kw
     }
+    spec |= {"set": list(set_)} if set_ else {}
     od = OutputDir(out, "run", spec).claim(overwrite)
     with _progress("run") as prog:
-        task = prog.add_task(f"slider-crank ({joint})", total=1.0)
-        _, _, summary = run_slider_crank(
-            joint,
+        task = prog.add_task(f"{name} ({variant})", total=1.0)
+        _, _, summary = run_shipped(
+            name,
+            variant,
             revs,
             out=od,
             progress=lambda f: prog.update(task, completed=f),
             model_kw=model_kw,
+            keys=set_,
             **run_kw,
         )
-    tab = Table(title=f"slider-crank, {joint} piston pin ({revs:g} rev)")
+    tab = Table(title=f"{m.title(variant)} ({revs:g} rev)")
     tab.add_column("quantity")
     tab.add_column("value", justify="right")
     for k, v in summary.items():

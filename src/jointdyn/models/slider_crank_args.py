@@ -18,6 +18,7 @@ from jointdyn.core.checks import FieldError, check
 from jointdyn.errors import PhysicsWarning
 from jointdyn.film.models import FILM_MODELS
 from jointdyn.models import slider_crank as sc
+from jointdyn.models.shipped import Shipped
 
 #: arguments of the builder that are numbers (sweepable), with their units from its docstring
 _DOC_UNIT = re.compile(r"(\w+)(?::[^;\[]*)?\s*\[([^\]]+)\]")
@@ -196,3 +197,28 @@ def check_run(revs, samples_per_rev, rtol=None, atol=None, names: dict | None = 
     for k, v in (("rtol", rtol), ("atol", atol)):
         if v is not None:
             check_value(k, v, "-", n.get(k))
+
+
+def _build(joint: str, **kw):
+    return sc.slider_crank(joint, **kw)
+
+
+#: the shipped slider-crank as a catalogue record (:mod:`jointdyn.models.catalog`)
+SLIDER_CRANK = Shipped(
+    name="slider-crank",
+    variant_arg="joint",
+    default_variant="perfect",
+    variants=joints,
+    numeric_args=builder_args,
+    flags=("friction", "contact"),
+    relevant=relevant,
+    model_kw=slider_crank_args,
+    build=_build,
+    config=sc.slider_crank_config,
+    run_args=run_args,
+    check_run=check_run,
+    headline=sc.headline,
+    summarize=sc.summarize,
+    aliases=sc.METRIC_ALIASES,
+    title=lambda joint: f"slider-crank, {joint} piston pin",
+)

@@ -23,6 +23,7 @@ value, a quasi-periodic or chaotic one a cloud. A diagram file::
 
 from __future__ import annotations
 
+import json
 import math
 import tomllib
 from dataclasses import dataclass, field
@@ -63,13 +64,16 @@ class BifurcationSpec:
     """optional ``element``, ``driver``, ``period`` [s] of the section (defaults: the model's)"""
 
     def __post_init__(self):
-        from jointdyn.models.slider_crank_args import builder_args
+        from jointdyn.models.catalog import DEFAULT, shipped
 
-        valid = list(builder_args())
-        if "file" not in self.base and self.parameter not in valid:  # model-file keys: its loader checks
-            raise ValueError(
-                f"bifurcation.parameter = {self.parameter!r}: not a builder argument; valid: {valid}"
-            )
+        if "file" not in self.base and "." not in self.parameter:  # model-file keys: its loader checks
+            m = shipped(self.base.get("model", DEFAULT))
+            valid = list(m.numeric_args())
+            if self.parameter not in valid:
+                raise ValueError(
+                    f"bifurcation.parameter = {self.parameter!r}: not a number argument of {m.name!r} "
+                    f"nor a model-file key (a.b.c); valid: {valid}"
+                )
         if len(self.values) < 1 or not all(math.isfinite(v) for v in self.values):
             raise ValueError("bifurcation.values [SI]: need at least one finite value")
         if self.transient_revs < 0 or self.record_revs < 1:
@@ -115,10 +119,13 @@ def load_bifurcation(path) -> BifurcationSpec:
         if not f.is_file():
             raise ValueError(f"{path}: [base].file = {base['file']!r}: no such model file ({f})")
         base["file"] = str(f)
-    elif base.get("model", "slider-crank") != "slider-crank":
-        raise ValueError(
-            f"{path}: [base] model = {base.get('model')!r}; valid: 'slider-crank', or file = \"FILE.toml\""
-        )
+    else:
+        from jointdyn.models.catalog import DEFAULT, shipped
+
+        try:
+            shipped(base.get("model", DEFAULT))
+        except ValueError as err:
+            raise ValueError(f'{path}: [base] {err}, or file = "FILE.toml"') from None
     return BifurcationSpec(
         base=base,
         parameter=b["parameter"],
@@ -245,9 +252,11 @@ def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> 
 
     p = next(iter(ds[variable].dims))
     x = ds[p].values
-    from jointdyn.models.slider_crank_args import builder_args
+    from jointdyn.models.catalog import DEFAULT, shipped
 
-    unit = builder_args().get(p, (0.0, ds[p].attrs.get("units", "")))[1]  # a model-file key: its own
+    base = json.loads(ds.attrs.get("base", "{}"))
+    args = {} if "file" in base else shipped(base.get("model", DEFAULT)).numeric_args()
+    unit = args.get(p, (0.0, ds[p].attrs.get("units", "")))[1]  # a model-file key: its own
     scale, unit = (1e3, "mm") if unit == "m" else (1.0, unit)
     if p == "speed":
         scale, unit = 60 / (2 * math.pi), "rpm"

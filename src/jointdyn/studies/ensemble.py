@@ -15,6 +15,7 @@ import os
 import numpy as np
 
 from jointdyn import post
+from jointdyn.models.catalog import DEFAULT
 from jointdyn.studies.poincare import stroboscopic_indices
 
 PER_REV = (
@@ -168,21 +169,10 @@ def perturbed_system(system, seed: int, scale: float = 1e-9):
 
 def _system(model, model_kw: dict):
     """(System, SimConfig) of an ensemble's model: a model file (``model_kw``: its overrides
-    ``{key: value}``) or a shipped model's builder arguments."""
-    import json
+    ``{key: value}``) or a shipped model (``model_kw``: its variant, builder arguments and keys)."""
+    from jointdyn.studies.runs import model_system
 
-    if str(model).endswith(".toml"):
-        from jointdyn.io.modelfile import load_system
-
-        _, system, cfg = load_system(model, [f"{k}={json.dumps(v)}" for k, v in model_kw.items()])
-        return system, cfg
-    from jointdyn.models.slider_crank import slider_crank, slider_crank_config
-
-    if model != "slider-crank":
-        raise ValueError(f"MODEL = {model!r}: valid: 'slider-crank' or a FILE.toml")
-    joint = model_kw.get("joint", "dry")
-    kw = {k: v for k, v in model_kw.items() if k != "joint"}
-    return slider_crank(joint, **kw).compile(), slider_crank_config(joint, 1.0)
+    return model_system(model, model_kw)
 
 
 def _run_case(model, model_kw: dict, revs: int, transient_revs: int, rtol: float, seed: int, spr: int):
@@ -199,7 +189,7 @@ def _run_case(model, model_kw: dict, revs: int, transient_revs: int, rtol: float
 
 
 def ensemble(
-    model="slider-crank",
+    model=DEFAULT,
     model_kw: dict | None = None,
     rtols=(1e-7, 1e-8, 1e-9),
     replicas: int = 1,
@@ -210,7 +200,7 @@ def ensemble(
 ) -> dict:
     """Distributions of the per-revolution quantities (:func:`revolution_stats`; revolutions of
     the model's first angle driver) of a model file (``model_kw``: its overrides) or the shipped
-    slider-crank (``model_kw``: ``joint`` and builder arguments) over revolutions
+    shipped model (``model_kw``: its variant, builder arguments and dotted keys) over revolutions
     ``transient_revs`` … ``revs`` of ``replicas`` runs per tolerance (replica r > 0 starts from a
     seeded 1e-9 velocity perturbation; atol = 1e-3·rtol), run in parallel on local processes,
     with the convergence check across tolerances (:func:`convergence`). Returns
@@ -238,9 +228,9 @@ def ensemble(
         g = groups.setdefault(f"{r:g}", {})
         for k, v in stats.items():
             g[k] = np.concatenate([g.get(k, np.empty(0)), np.asarray(v, float)])
-    settings = (
-        {"model": str(model)} if str(model).endswith(".toml") else {"joint": model_kw.get("joint", "dry")}
-    )
+    settings = {"model": str(model)} | {
+        k: v for k, v in model_kw.items() if isinstance(v, str) and "." not in k
+    }
     return {
         "bands": convergence(groups),
         "per_rtol": {name: {k: band(v) for k, v in g.items()} for name, g in groups.items()},
@@ -252,26 +242,10 @@ def ensemble(
             "transient_revs": int(transient_revs),
             "samples_per_rev": int(samples_per_rev),
             "model_kw": {
-                k: v for k, v in model_kw.items() if isinstance(v, (int, float, str)) and k != "joint"
+                k: v for k, v in model_kw.items() if isinstance(v, (int, float)) and not isinstance(v, bool)
             },
         },
     }
-
-
-def slider_crank_ensemble(
-    joint: str = "dry",
-    rtols=(1e-7, 1e-8, 1e-9),
-    replicas: int = 1,
-    revs: int = 60,
-    transient_revs: int = 10,
-    samples_per_rev: int = 720,
-    model_kw: dict | None = None,
-    workers: int | None = None,
-) -> dict:
-    """:func:`ensemble` of the shipped slider-crank with piston-pin ``joint`` and builder
-    arguments ``model_kw``."""
-    kw = {"joint": joint, **(model_kw or {})}
-    return ensemble("slider-crank", kw, rtols, replicas, revs, transient_revs, samples_per_rev, workers)
 
 
 def ensemble_table(result: dict) -> list[dict]:

@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn import post
-from jointdyn.studies.runs import run_slider_crank
+from jointdyn.studies.runs import run_shipped
 from jointdyn.viz.reproduce_figures import drawing
 
 
@@ -81,7 +81,8 @@ SUMMARY_COLUMNS = (
 def run_case(case: Case, revs: float, progress=None):
     """Simulate one case; returns (results, columns, summary row)."""
     t0 = time.perf_counter()
-    res, cols, summ = run_slider_crank(
+    res, cols, summ = run_shipped(
+        "slider-crank",
         case.joint,
         revs,
         progress=progress,

@@ -4,7 +4,7 @@ The dry joint is chaotic ([T162], [T125]): the 4-revolution trajectory of the pa
 is one sample of a chaotic attractor, and its last-revolution numbers change with the tolerance.
 ``jointdyn reproduce`` therefore also runs :data:`ENSEMBLE` — replicas with perturbed initial
 velocities at two tolerances, in parallel on local processes
-(:func:`jointdyn.studies.ensemble.slider_crank_ensemble`), a transient discarded — and reports the
+(:func:`jointdyn.studies.ensemble.ensemble`), a transient discarded — and reports the
 median and 5–95 % band of the per-revolution quantities, the median at each tolerance and the
 bootstrap standard error of the pooled median (what the sample resolves) [T120, T121, T135].
 """
@@ -36,11 +36,12 @@ QUANTITIES = {
 
 def dry_ensemble(workers: int | None = None, **overrides) -> dict:
     """Run the reproduce ensemble of the dry case (settings :data:`ENSEMBLE`, ``overrides``
-    replace them); the result of :func:`~jointdyn.studies.ensemble.slider_crank_ensemble`."""
-    from jointdyn.studies.ensemble import slider_crank_ensemble
+    replace them); the result of :func:`~jointdyn.studies.ensemble.ensemble`."""
+    from jointdyn.studies.ensemble import ensemble
 
     kw = {**ENSEMBLE, **overrides}
-    return slider_crank_ensemble("dry", workers=workers, **kw)
+    model_kw = {"joint": "dry", **kw.pop("model_kw", {})}
+    return ensemble("slider-crank", model_kw, workers=workers, **kw)
 
 
 def _g(v: float, digits: int = 4) -> str:

@@ -1,8 +1,8 @@
 """One path for every run: :func:`run` compiles a model once, simulates it, derives the output
 contract (:mod:`jointdyn.studies.outputs`) and writes it into a claimed directory. The CLI
 (``jointdyn run``, shipped model or model file), sweeps and the reproduction use it;
-:func:`run_slider_crank` adds the slider-crank's headline columns and summary (defined in
-:mod:`jointdyn.models.slider_crank`).
+:func:`run_shipped` runs a shipped model (:mod:`jointdyn.models.catalog`) with its own headline
+columns and summary.
 """
 
 from __future__ import annotations
@@ -14,8 +14,7 @@ import numpy as np
 
 from jointdyn.core import interrupts
 from jointdyn.errors import Interrupted, SimulationError
-from jointdyn.models import slider_crank as sc
-from jointdyn.models.slider_crank import slider_crank_config
+from jointdyn.models.catalog import shipped
 from jointdyn.simulation.simulate import SimConfig, simulate
 from jointdyn.studies import outputs
 
@@ -114,24 +113,38 @@ def _write_partial(out, err: SimulationError, status: str, headline, title, file
         out.finish(status, reason, t_reached=getattr(err, "t", None))
 
 
-def run_slider_crank(
-    joint: str = "perfect",
+def run_shipped(
+    name: str,
+    variant: str | None = None,
     revs: float = 4.0,
     out=None,
     progress=None,
     model_kw: dict | None = None,
+    keys=(),
     **cfg_kw,
 ):
-    """Simulate the benchmark slider-crank; optionally write the run files. ``out`` is a
-    directory path (claimed here, see :mod:`jointdyn.io.rundir`) or a claimed
+    """Simulate the shipped model ``name`` (its ``variant``, checked builder arguments
+    ``model_kw``, dotted model-file ``keys`` ``a.b=VALUE`` set on the built model, run settings
+    ``cfg_kw``) for ``revs`` revolutions of its driver; optionally write the run files. ``out`` is
+    a directory path (claimed here, see :mod:`jointdyn.io.rundir`) or a claimed
     :class:`~jointdyn.io.rundir.OutputDir`. Returns (results, columns, summary)."""
     from jointdyn.io.rundir import OutputDir
 
-    model = sc.slider_crank(joint, **(model_kw or {}))
-    # revs count crank revolutions at the run's own speed
-    cfg = slider_crank_config(joint, revs, speed=(model_kw or {}).get("speed", sc.SPEED), **cfg_kw)
+    m = shipped(name)
+    variant = variant or m.default_variant
+    model, cfg = m.setup(variant, revs, model_kw, **cfg_kw)
+    if keys:
+        from jointdyn.io.modelfile import with_keys
+
+        sim = [k for k in keys if k.strip().startswith("simulation.")]
+        if sim:
+            raise ValueError(
+                f"--set {sim[0]!r}: a shipped model's run settings are options (--revs, --rtol, ...)"
+            )
+        _, model, cfg = with_keys(model, cfg, list(keys), f"{name} ({variant})")
     if out is not None and not isinstance(out, OutputDir):
-        spec = {"model": "slider-crank", "joint": joint, "revs": revs, **(model_kw or {}), **cfg_kw}
+        spec = {"model": name, m.variant_arg: variant, "revs": revs, **(model_kw or {}), **cfg_kw}
+        spec |= {"set": list(keys)} if keys else {}
         spec = {k: v if isinstance(v, (int, float, str)) else repr(v) for k, v in spec.items()}
         out = OutputDir(Path(out), "run", spec).claim(overwrite=True)
     return run(
@@ -139,10 +152,10 @@ def run_slider_crank(
         cfg,
         out,
         progress=progress,
-        headline=sc.headline,
-        extra_summary=lambda res, cols, metrics: sc.summarize(res, cols, metrics, revs),
-        aliases=sc.METRIC_ALIASES,
-        title=f"slider-crank, {joint} piston pin",
+        headline=m.headline,
+        extra_summary=lambda res, cols, metrics: m.summarize(res, cols, metrics, revs),
+        aliases=m.aliases,
+        title=m.title(variant),
     )
 
 
@@ -180,3 +193,28 @@ def run_model_file(path, out_dir, overrides=(), overwrite: bool = True, progress
         meta={"model_file": str(path), "overrides": list(overrides)},
     )
     return res
+
+
+def model_system(model: str, given: dict | None = None, revs: float = 1.0):
+    """``(System, SimConfig)`` of MODEL, a model file (``given``: ``{dotted.key: value}``
+    overrides) or a shipped model (``given``: its variant and builder arguments by name, checked,
+    plus dotted model-file keys set on the built model); a shipped model's config covers ``revs``
+    revolutions of its driver."""
+    import json
+
+    given = dict(given or {})
+    keys = [f"{k}={json.dumps(v)}" for k, v in given.items() if "." in k]
+    if str(model).endswith(".toml") or Path(str(model)).is_file():
+        from jointdyn.io.modelfile import load_system
+
+        _, system, cfg = load_system(model, keys)
+        return system, cfg
+    m = shipped(model)
+    variant = given.pop(m.variant_arg, m.default_variant)
+    args = {k: v for k, v in given.items() if "." not in k}
+    built, cfg = m.setup(variant, revs, m.model_kw(variant, args))
+    if keys:
+        from jointdyn.io.modelfile import with_keys
+
+        return with_keys(built, cfg, keys, f"{model} ({variant})")[1:]
+    return built.compile(), cfg

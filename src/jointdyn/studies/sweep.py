@@ -40,7 +40,6 @@ import numpy as np
 from jointdyn.core import atomic, interrupts
 from jointdyn.core.atomic import OutputError
 from jointdyn.errors import Interrupted
-from jointdyn.models import slider_crank_args as options
 from jointdyn.studies.sweep_spec import (
     SweepSpec,
     latin_hypercube,
@@ -99,13 +98,15 @@ def run_case(base: dict, params: dict, series_path: str | None = None, arrays: d
                 _, system, cfg = load_file_case(merged)
                 res, _, summ = runs.run(system, cfg)
             else:
-                from jointdyn.models.slider_crank_args import joints
-                from jointdyn.studies.sweep_spec import slider_crank_call
+                from jointdyn.models.catalog import DEFAULT, shipped
 
-                # validate() refused arguments that act on no joint of the sweep; the rest that
-                # do not act on this case's joint are dropped here
-                joint, model_kw, run_kw, revs = slider_crank_call(merged, set(joints()))
-                res, _, summ = runs.run_slider_crank(joint, revs, model_kw=model_kw, **run_kw)
+                # validate() refused arguments that act on no variant of the sweep; the rest that
+                # do not act on this case's variant are dropped here
+                from jointdyn.studies.sweep_spec import shipped_call
+
+                m = shipped(merged.get("model", DEFAULT))
+                v, model_kw, run_kw, revs, keys = shipped_call(merged, set(m.variants()), check_keys=False)
+                res, _, summ = runs.run_shipped(m.name, v, revs, model_kw=model_kw, keys=keys, **run_kw)
         extra = {"arrays": case_arrays(res, arrays)} if arrays else {}
         if series_path:
             with atomic.replacing(Path(series_path)) as tmp:
@@ -313,7 +314,10 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
     if spec.grid and not spec.zipped and not spec.sample:
         keys = list(spec.grid)
         ds = ds.swap_dims(case=keys[0]) if len(keys) == 1 else ds.set_index(case=keys).unstack("case")
-    units |= {k: u for k, (_, u) in options.builder_args().items()}
+    if "file" not in spec.base:
+        from jointdyn.models.catalog import DEFAULT, shipped
+
+        units |= {k: u for k, (_, u) in shipped(spec.base.get("model", DEFAULT)).numeric_args().items()}
     for name in ds.variables:
         if name in units:
             ds[name].attrs["units"] = units[name]

@@ -17,7 +17,7 @@ import numpy as np
 
 from jointdyn.core.checks import check
 from jointdyn.io.modelfile.locate import read_toml
-from jointdyn.models import slider_crank_args as options
+from jointdyn.models.catalog import DEFAULT, shipped
 
 TABLES = ("base", "grid", "zip", "sample", "output", "dask")
 #: array outputs a case can return besides its scalar metrics ([output.NAME] tables): name ->
@@ -65,14 +65,14 @@ def load_file_case(merged: dict, assemble: bool = True):
     return model, system, cfg
 
 
-def model_args() -> tuple[str, ...]:
-    """Sweepable builder arguments of the slider-crank (from its signature) plus ``joint``."""
-    return ("joint", *options.builder_args(), "friction", "contact")
+def model_args(model: str = DEFAULT) -> tuple[str, ...]:
+    """Sweepable builder arguments of the shipped ``model`` (its variant, numbers and flags)."""
+    return shipped(model).arguments()
 
 
-def run_args() -> tuple[str, ...]:
-    """Sweepable integration settings (from ``slider_crank_config``'s signature)."""
-    return tuple(options.run_args())
+def run_args(model: str = DEFAULT) -> tuple[str, ...]:
+    """Sweepable run settings of the shipped ``model``."""
+    return tuple(shipped(model).run_args())
 
 
 @dataclass(frozen=True)
@@ -193,41 +193,32 @@ def load_sweep(path) -> SweepSpec:
 
 
 def _check_param(base: dict, name: str, where: str = "sweep parameter"):
-    if "file" in base:
-        return  # dotted model-file paths are checked by the model-file loader
-    valid = tuple(dict.fromkeys(("model", *model_args(), *run_args())))
+    if "file" in base or "." in name:
+        return  # dotted model-file keys are checked by the model-file loader, per case
+    m = base.get("model", DEFAULT)
+    valid = tuple(dict.fromkeys(("model", *model_args(m), *run_args(m))))
     if name not in valid:
-        raise ValueError(f"{where} {name!r} is not a slider-crank argument; valid: {list(valid)}")
+        raise ValueError(
+            f"{where} {name!r} is not an argument of the shipped model {m!r}; valid: {list(valid)}"
+        )
 
 
-def slider_crank_call(merged: dict, joints_in_sweep: set | None = None):
-    """``(joint, model_kw, run_kw, revs)`` for one slider-crank case, checked. Arguments with
-    no effect on this case's joint are dropped when they act on another joint of the sweep
-    (``joints_in_sweep``), otherwise they are an error."""
-    model = merged.get("model", "slider-crank")
-    if model != "slider-crank":
-        raise ValueError(f"model = {model!r}: unknown shipped model; valid: ['slider-crank']")
-    joint = merged.get("joint", "perfect")
-    if not isinstance(joint, str) or joint not in options.joints():
-        raise ValueError(f"joint = {joint!r}: unknown; valid: {', '.join(options.joints())}")
-    given = {k: merged[k] for k in model_args() if k in merged and k != "joint"}
-    if joints_in_sweep:
-        for k in list(given):
-            if k not in options.relevant(joint) and any(k in options.relevant(j) for j in joints_in_sweep):
-                del given[k]
-    model_kw = options.slider_crank_args(joint, given)
-    ra = options.run_args()
-    run_kw = {k: merged[k] for k in ra if k in merged and k != "revs"}
-    revs = merged.get("revs", ra["revs"])
-    options.check_run(
-        revs, run_kw.get("samples_per_rev", ra["samples_per_rev"]), run_kw.get("rtol"), run_kw.get("atol")
-    )
-    if "solver" in run_kw:
-        from jointdyn.integrators import SOLVERS
+def shipped_call(merged: dict, variants_in_sweep: set | None = None, check_keys: bool = True):
+    """``(variant, model_kw, run_kw, revs, keys)`` of one case of a shipped model (``model``,
+    default :data:`~jointdyn.models.catalog.DEFAULT`), checked
+    (:meth:`~jointdyn.models.shipped.Shipped.call`); ``keys``: its dotted model-file keys as
+    ``key=VALUE`` overrides, checked against the built model with ``check_keys``."""
+    import json
 
-        if run_kw["solver"] not in ("auto", *SOLVERS):
-            raise ValueError(f"solver = {run_kw['solver']!r}: unknown; valid: {['auto', *SOLVERS]}")
-    return joint, model_kw, run_kw, float(revs)
+    m = shipped(merged.get("model", DEFAULT))
+    variant, model_kw, run_kw, revs = m.call(merged, variants_in_sweep)
+    keys = [f"{k}={json.dumps(v)}" for k, v in merged.items() if "." in k]
+    if keys and check_keys:
+        from jointdyn.io.modelfile import with_keys
+
+        model, cfg = m.setup(variant, revs, model_kw, **run_kw)
+        with_keys(model, cfg, keys, f"{m.name} ({variant})", assemble=False)
+    return variant, model_kw, run_kw, revs, keys
 
 
 def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
@@ -238,12 +229,15 @@ def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
         raise ValueError("the sweep has no cases (an empty list or sample n = 0)")
     invalid: dict[int, str] = {}
     seen: set[str] = set()
-    joints = {c.get("joint", spec.base.get("joint", "perfect")) for c in cases}
-    joints = {j for j in joints if isinstance(j, str)}
+    joints: set = set()
     if "file" not in spec.base:
-        for k in {*spec.base, *(k for c in cases for k in c)} & set(model_args()) - {"joint"}:
-            if not any(k in options.relevant(j) for j in joints & set(options.joints())):
-                raise ValueError(f"{k!r}: no effect on any joint of this sweep ({', '.join(sorted(joints))})")
+        m = shipped(spec.base.get("model", DEFAULT))
+        va = m.variant_arg
+        joints = {c.get(va, spec.base.get(va, m.default_variant)) for c in cases}
+        joints = {j for j in joints if isinstance(j, str)}
+        for k in {*spec.base, *(k for c in cases for k in c)} & set(m.arguments()) - {va}:
+            if not any(k in m.relevant(j) for j in joints & set(m.variants())):
+                raise ValueError(f"{k!r}: no effect on any {va} of this sweep ({', '.join(sorted(joints))})")
     for i, params in enumerate(cases):
         merged = {**spec.base, **params}
         with warnings.catch_warnings(record=True) as caught:
@@ -252,7 +246,7 @@ def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
                 if "file" in merged:  # values and names checked here; assembly once, in the run
                     load_file_case(merged, assemble=False)
                 else:
-                    slider_crank_call(merged, joints)
+                    shipped_call(merged, joints)
             except ValueError as err:
                 invalid[i] = f"{type(err).__name__}: {err}"
         for w in caught:

@@ -16,7 +16,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-#: the shipped model's joints, as ``jointdyn run slider-crank --joint`` runs them (the README's
+#: the default shipped model's variants, as ``jointdyn run slider-crank --joint`` runs them (the README's
 #: main job runs all but "short")
 SHIPPED = ("perfect", "dry", "ott", "alshaer2005", "finite", "short")
 
@@ -38,9 +38,10 @@ def warm_one(target: str) -> dict:
     t0 = time.perf_counter()
     with event.install_listener("numba:compile", _Count()):
         if target in SHIPPED:
-            from jointdyn.studies.runs import run_slider_crank
+            from jointdyn.models.catalog import DEFAULT
+            from jointdyn.studies.runs import run_shipped
 
-            run_slider_crank(target, revs=0.02, samples_per_rev=200)
+            run_shipped(DEFAULT, target, revs=0.02, samples_per_rev=200)
         else:
             from jointdyn.io.modelfile import load_model
             from jointdyn.simulation.simulate import simulate

@@ -22,7 +22,7 @@ there is no second schema), :mod:`.locate` (dotted key -> file line, keyed messa
 from __future__ import annotations
 
 from jointdyn.io.modelfile.dump import dumps, save_model, toml_value
-from jointdyn.io.modelfile.load import apply_overrides, build, load_model, load_system
+from jointdyn.io.modelfile.load import apply_overrides, build, load_model, load_system, with_keys
 from jointdyn.io.modelfile.schema import (
     LAW_FIELDS,
     NAME_FIELDS,
@@ -50,4 +50,5 @@ __all__ = [
     "schemas",
     "toml_value",
     "type_name",
+    "with_keys",
 ]

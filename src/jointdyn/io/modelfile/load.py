@@ -421,3 +421,18 @@ def _overridden(overrides) -> dict:
         if p:
             out[p] = ov
     return out
+
+
+def with_keys(model: Model, config: SimConfig, overrides=(), source: str = "<model>", assemble: bool = True):
+    """``(Model, System | None, SimConfig)`` of a built model (e.g. a shipped one) with dotted
+    model-file ``key=value`` overrides applied: the model is written as its model file, the keys
+    are set on that, and it is read back (the same checks and messages as a file). ``System`` is
+    None without ``assemble``."""
+    from jointdyn.io.modelfile.dump import dumps
+
+    text = dumps(model, config)
+    doc = apply_overrides(tomllib.loads(text), overrides)
+    if not assemble:
+        m, cfg = build(doc, source, text, _overridden(overrides), False)
+        return m, None, cfg
+    return _build(doc, source, text, _overridden(overrides), True)
