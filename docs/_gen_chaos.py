@@ -118,10 +118,10 @@ def spectrum():
     from jointdyn.studies.spectra import plot_spectra, run_spectra
 
     res, _, _ = run_shipped("slider-crank", "dry", 60, samples_per_rev=720, rtol=1e-8, atol=1e-11)
-    sp = run_spectra(res, transient_revs=10, slider="slider")
+    sp = run_spectra(res, transient_revs=10, body="slider")
     plot_spectra(sp, FIG / "chaos_spectrum_dry.png", 40, "dry slider-crank, revolutions 10–60")
     print(
-        "spectrum: harmonic 1 of the slider acceleration", sp["slider_acceleration"][sp["harmonic"] == 1][0]
+        "spectrum: harmonic 1 of the slider acceleration", sp["body_x_acceleration"][sp["harmonic"] == 1][0]
     )
 
 

@@ -125,8 +125,8 @@ def test_spectrum_of_the_perfect_slider_crank_matches_the_kinematics():
     # ẍ has harmonic 1 of amplitude r ω² exactly and no odd harmonics ≥ 3 [T130]; harmonic 2
     # from the Fourier coefficient of the exact x(φ) by a 4096-point trapezoidal rule (spectral)
     res, _, _ = run_shipped("slider-crank", "perfect", 4.0, samples_per_rev=720, rtol=1e-11, atol=1e-13)
-    sp = run_spectra(res, transient_revs=1, slider="slider")
-    h, a = sp["harmonic"], sp["slider_acceleration"]
+    sp = run_spectra(res, transient_revs=1, body="slider")
+    h, a = sp["harmonic"], sp["body_x_acceleration"]
     r, l, w = sc.CRANK_LENGTH, sc.ROD_LENGTH, sc.SPEED
     assert a[h == 1][0] == pytest.approx(r * w * w, rel=1e-7)  # integration error of q̈, rtol 1e-11
     assert a[h == 3][0] < 1e-7 * r * w * w and a[h == 5][0] < 1e-7 * r * w * w

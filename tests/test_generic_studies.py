@@ -187,7 +187,7 @@ def test_poincare_and_spectrum_of_a_model_file_run(four_bar, tmp_path):
     r = runner.invoke(app, ["spectrum", str(out), "--transient-revs", "1", "--body", "rocker"])
     assert r.exit_code == 0, r.output
     head = (out / "spectrum.csv").read_text().splitlines()[0]
-    assert head == "harmonic,crank_moment,slider_acceleration,joint_force"
+    assert head == "harmonic,drive_moment,body_x_acceleration,joint_force"
     r = runner.invoke(app, ["poincare", str(out), "--element", "spring"])
     assert r.exit_code == 2 and "not a journal element" in r.output and "['pin']" in r.output
 

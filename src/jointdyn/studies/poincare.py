@@ -70,7 +70,7 @@ def stroboscopic_indices(angle: np.ndarray, section_angle: float, tol: float = 1
 
 
 def stroboscopic(series: dict, angle: np.ndarray, section_angle: float, t: np.ndarray) -> Section:
-    """Stroboscopic section at crank angle ``section_angle`` [rad] (mod 2π) [T122]. ``series`` maps
+    """Stroboscopic section at driver angle ``section_angle`` [rad] (mod 2π) [T122]. ``series`` maps
     names to arrays sampled with ``angle``. Where no sample lies on the section angle, the
     values are interpolated linearly between the two neighbouring samples."""
     idx = stroboscopic_indices(angle, section_angle)

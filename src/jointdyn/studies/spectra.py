@@ -1,7 +1,7 @@
 """Amplitude spectra of periodic-in-the-mean signals in harmonics of a driver's speed [T130].
 
 Over an integer number N of revolutions sampled at equal time steps, the discrete Fourier
-transform has its bins exactly at the harmonics k/N of the crank frequency (no leakage for a
+transform has its bins exactly at the harmonics k/N of the driver's frequency (no leakage for a
 periodic signal, rectangular window); the one-sided amplitude of bin m is 2|X_m|/n_samples
 (|X_0|/n for the mean). Harmonic order h = m/N [-].
 """
@@ -35,12 +35,12 @@ def run_spectra(
     res,
     transient_revs: int = 0,
     driver: str | None = None,
-    slider: str | None = None,
+    body: str | None = None,
     element: str | None = "",
 ) -> dict:
     """Spectra over the complete revolutions of angle driver ``driver`` (default: the model's
-    first) after ``transient_revs``: its moment (``crank_moment`` [N·m]), the x acceleration
-    of body ``slider`` [m/s²] if given, and the force magnitude of journal ``element`` [N]
+    first) after ``transient_revs``: its moment (``drive_moment`` [N·m]), the x acceleration
+    of ``body`` (``body_x_acceleration`` [m/s²]) if given, and the force magnitude of journal ``element`` [N]
     (``""``: the model's first, if it has one; None: none). Returns {"harmonic": h, name:
     amplitude, "revs": N}."""
     from jointdyn.studies import period as per
@@ -63,11 +63,11 @@ def run_spectra(
     dt = np.diff(res.t[sl])
     if dt.size and np.ptp(dt) > 1e-9 * dt.mean():
         raise ValueError("the output samples are not equally spaced in time; a spectrum needs a uniform grid")
-    series = {"crank_moment": post.driving_moment(res, driver)[sl]}
-    if slider is not None:
-        if slider not in res.system.body_names:
-            raise ValueError(f"--body {slider!r}: no such body; valid: {list(res.system.body_names)}")
-        series["slider_acceleration"] = res.qdd[sl, 3 * res.system.body_index(slider)]
+    series = {"drive_moment": post.driving_moment(res, driver)[sl]}
+    if body is not None:
+        if body not in res.system.body_names:
+            raise ValueError(f"--body {body!r}: no such body; valid: {list(res.system.body_names)}")
+        series["body_x_acceleration"] = res.qdd[sl, 3 * res.system.body_index(body)]
     if element is not None:
         series["joint_force"] = np.hypot(res.element(element, "Fx"), res.element(element, "Fy"))[sl]
     out: dict = {"revs": revs}
@@ -78,7 +78,7 @@ def run_spectra(
     return out
 
 
-UNITS = {"crank_moment": "N·m", "slider_acceleration": "m/s²", "joint_force": "N"}
+UNITS = {"drive_moment": "N·m", "body_x_acceleration": "m/s²", "joint_force": "N"}
 
 
 def plot_spectra(spec: dict, path, max_harmonic: float = 40.0, title: str = "") -> None:
@@ -96,7 +96,7 @@ def plot_spectra(spec: dict, path, max_harmonic: float = 40.0, title: str = "") 
         ax.semilogy(h[keep], np.maximum(spec[k][keep], 1e-300), lw=0.8)
         ax.set_ylabel(f"{k}\n[{UNITS[k]}]")
         ax.grid(alpha=0.3)
-    axes[-1, 0].set_xlabel(f"harmonic of the crank speed [-] ({spec['revs']} revolutions)")
+    axes[-1, 0].set_xlabel(f"harmonic of the driver's speed [-] ({spec['revs']} revolutions)")
     if title:
         axes[0, 0].set_title(title)
     fig.tight_layout()

@@ -5,7 +5,7 @@ A sweep file (TOML)::
     [base]                      # what is run for every case
     model = "slider-crank"      # a shipped model …
     joint = "alshaer2005"       # … with its builder arguments (clearance, viscosity, speed, …)
-    revs = 4                    # crank revolutions
+    revs = 4                    # revolutions of the model's driver
     [grid]                      # full factorial over these (builder or solver arguments)
     clearance = [5e-5, 1e-4, 5e-4]
     viscosity = [0.1, 0.4, 1.0]
