@@ -29,3 +29,15 @@ def test_work_precision_quick_runs(capsys):
     r6, r7 = (r["error"] for r in rows if r["solver"] == "radau5")
     assert r7 < r6
     assert "wall time [s] at equal accuracy" in capsys.readouterr().out
+
+
+@pytest.mark.slow
+def test_rhs_ab_runs_a_tree_against_itself(capsys):
+    """benchmarks.rhs_ab with the same tree on both sides prints a row per case (no timing
+    assertion: the ratio of a tree to itself is only noise)."""
+    from benchmarks.rhs_ab import main as ab_main
+
+    src = str(Path(__file__).resolve().parents[1] / "src")
+    ab_main([src, src, "--rounds", "1", "--n", "1000", "--cases", "perfect"])
+    out = capsys.readouterr().out
+    assert "| perfect |" in out and "B/A" in out
