@@ -1,12 +1,12 @@
-"""Every documented command runs as written.
+"""Every documented command and Python snippet runs as written.
 
 The commands are read from the fenced shell blocks of the README, CONTRIBUTING and docs/ and from
 the comment lines of examples/ (``# jointdyn …``, ``# Run: jointdyn …``). Default tier: each
 ``jointdyn`` command is parsed by the CLI's own parser exactly as written (command, options,
 choices, types, required arguments), the files it names exist, and each ``python -m MODULE``
 names a module that exists. Slow tier (``-m slow``): every command without a placeholder is
-executed, in the order of its page, in a scratch directory holding the repository's
-``examples/``, and must exit 0.
+executed, in reading order, in a scratch directory holding the repository's ``examples/``, and
+must exit 0; then each page's ```python blocks run as one script there.
 """
 
 from __future__ import annotations
@@ -218,3 +218,23 @@ def test_documented_commands_run(tmp_path):
             timeout=1800,
         )
         assert r.returncode == 0, f"{page}:{line}: `{cmd}` exited {r.returncode}: {r.stderr[-2000:]}"
+    for page in sorted({p for p, _ in python_blocks()}, key=lambda p: (p != "README.md", p)):
+        script = tmp_path / f"snippets_{page.replace('/', '_')}.py"
+        script.write_text("\n".join(code for p, code in python_blocks() if p == page), encoding="utf-8")
+        r = subprocess.run(
+            [sys.executable, str(script)], cwd=tmp_path, env=env, capture_output=True, text=True, timeout=1800
+        )
+        assert r.returncode == 0, f"{page}: its Python blocks fail: {r.stderr[-2000:]}"
+
+
+def python_blocks() -> list[tuple[str, str]]:
+    """(page, code) of every ```python block of the README and docs/ (the how-to's blocks are
+    run by tests/test_how_to.py, each against its own registry)."""
+    out = []
+    for page in PAGES:
+        rel = str(page.relative_to(ROOT))
+        if rel == "docs/how-to-add-a-model.md":
+            continue
+        text = page.read_text(encoding="utf-8")
+        out += [(rel, m.group(1)) for m in re.finditer(r"^```python\n(.*?)^```", text, re.S | re.M)]
+    return out
