@@ -50,15 +50,12 @@ EPS_MAX = 0.999
 
 #: film-model names (``FILM_MODELS``) accepted as table models: name -> (table model, the film's
 #: own cavitation); ``finite`` is the same name in both lists (its cavitation is an option of both)
-FILM_ALIASES = {
-    "alshaer2005": ("long", "gumbel"),  # the π-film: long bearing, half-Sommerfeld [T21]
-    "short": ("short", "gumbel"),  # Ocvirk's film exists with Gümbel's condition only [T35]
-}
+FILM_ALIASES = {"alshaer2005": ("long", "gumbel")}  # the π-film: long bearing, half-Sommerfeld [T21]
 
 
 def _check_model(model, cavitation):
     """(table model, cavitation) after the film-name aliases; ``cavitation`` None: the aliased
-    film's own, else Swift–Stieber (``reynolds``)."""
+    film's own, ``gumbel`` for ``short``, else Swift–Stieber (``reynolds``)."""
     if model in FILM_ALIASES:
         film = model
         model, own = FILM_ALIASES[film]
@@ -68,7 +65,8 @@ def _check_model(model, cavitation):
                 f"{own!r} cavitation" + (f"; use model 'long' for {cavitation!r}" if model == "long" else "")
             )
         cavitation = own
-    cavitation = "reynolds" if cavitation is None else cavitation
+    if cavitation is None:  # Ocvirk's film exists with Gümbel's condition only [T35]
+        cavitation = "gumbel" if model == "short" else "reynolds"
     if model not in MODELS:
         hint = " ('ott' approximates 'alshaer2005', it is not a table model)" if model == "ott" else ""
         raise ValueError(
@@ -158,7 +156,7 @@ def bearing_table(model: str, cavitation: str | None, ld: float, eps_list, mesh=
     model       "finite" (2-D Reynolds [T70–T72]), "long" (L/D → ∞ [T78]) or "short" (Ocvirk [T79]);
                 a film name of ``FILM_ALIASES`` (``alshaer2005`` = long with gumbel) is accepted
     cavitation  "reynolds" (Swift–Stieber, as Raimondi–Boyd) or "gumbel" (half-Sommerfeld);
-                None: the aliased film's own, else reynolds
+                None: the aliased film's own, gumbel for short, else reynolds
     ld          L/D > 0 [-] (``long`` uses it only in the ``ld`` column)
     eps_list    eccentricity ratios, each in (0, 1) [-]
     mesh        finite-volume mesh of ``finite`` (cells around, cells on the half length) [-]

@@ -33,7 +33,7 @@ def _floats(text: str, name: str) -> list[float]:
 def bearing_table_cmd(
     model: str = typer.Option("finite", help="finite | long | short | alshaer2005 (film name: long, gumbel)"),
     cavitation: str = typer.Option(
-        None, help="reynolds (Swift–Stieber, default) | gumbel (default of short, alshaer2005)"
+        None, help="reynolds (Swift–Stieber, default) | gumbel (default of short and alshaer2005)"
     ),
     ld: float = typer.Option(..., help="length/diameter ratio L/D (> 0)"),
     eps: str = typer.Option(
