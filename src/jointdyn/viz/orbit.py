@@ -59,11 +59,14 @@ def orbit_labels(ax, frame: str | None) -> None:
     ax.set_ylabel(f"$e_y/c$ [-]{where}")
 
 
-def journal_orbit(ex_over_c, ey_over_c, ax=None, label=None, frame: str | None = None, start=True, **kw):
+def journal_orbit(
+    ex_over_c, ey_over_c, ax=None, label=None, frame: str | None = None, start=True, zoom=True, **kw
+):
     """Journal-centre path e/c [-] inside the clearance circle (ξ = 1, dashed), with the start
     (○), the end (×) and arrow heads along the direction of travel; ``frame`` names the frame of
     the components in the axis labels (the convention is the bushing frame, [T290]). A path that
-    stays within ``SMALL_ORBIT`` of the centre is also drawn zoomed in an inset (upper right)."""
+    stays within ``SMALL_ORBIT`` of the centre is also drawn zoomed in an inset (upper right)
+    unless ``zoom`` is False."""
     ax = _axes(ax, figsize=(4.6, 4.6))
     ex_over_c, ey_over_c = np.asarray(ex_over_c, float), np.asarray(ey_over_c, float)
     th = np.linspace(0, 2 * np.pi, 361)
@@ -85,7 +88,7 @@ def journal_orbit(ex_over_c, ey_over_c, ax=None, label=None, frame: str | None =
     ax.set_yticks(ticks)
     orbit_labels(ax, frame)
     ax.grid(True, alpha=0.3)
-    if len(ex_over_c) and r < SMALL_ORBIT:
+    if zoom and len(ex_over_c) and r < SMALL_ORBIT:
         _zoom(ax, ex_over_c, ey_over_c, line, start, lw, kw)
     return ax
 

@@ -255,7 +255,10 @@ def run_figure(
         _finish_x(ax, xs, is_angle)
     if len(runs) == 1:
         window = ("\nlast revolution" if revs == 1 else f"\nlast {revs:g} revolutions") if revs else ""
-        ax.set_title(describe(runs[0]) + window, fontsize=9)
+        what_ = f"\njournal centre path e/c, {frame} frame" if what == "orbit" else ""
+        ax.set_title(describe(runs[0]) + window + what_, fontsize=9)
+    elif what == "orbit":
+        ax.set_title(f"journal centre path e/c, {frame} frame", fontsize=9)
     if what == "orbit":
         style.legend_below(ax, ncol=4, y=-0.14)
     else:  # outside the data: under the axis label
