@@ -175,6 +175,7 @@ def reproduction_html(runs: dict, out, revs: float) -> Path:
     The figure specs are written directly as plotly.js data and layout (no plotly Figure objects:
     building and validating those took ≈ 40 MB and most of the page's time, [T173])."""
     from jointdyn import post
+    from jointdyn.viz.orbit import direction_points
     from jointdyn.viz.style import PLOTLY_DASH, styles
 
     st = styles(list(runs))  # the colours and dashes of the report's PNGs
@@ -225,16 +226,22 @@ def reproduction_html(runs: dict, out, revs: float) -> Path:
                     "line": line(n),
                 }
             )
-            if len(ex):  # start ○ and end × of the path, in its colour, grouped with it in the legend
+            if len(ex):  # start ○, end × and the direction of travel, in the path's colour
+                heads = direction_points(ex, ey)
                 orbits.append(
                     {
                         "type": "scatter",
                         "mode": "markers",
-                        "x": [ex[0], ex[-1]],
-                        "y": [ey[0], ey[-1]],
-                        "name": f"{runs[n][3].label}: start ○, end ×",
+                        "x": [ex[0], ex[-1], *(ex[i] for i, _ in heads)],
+                        "y": [ey[0], ey[-1], *(ey[i] for i, _ in heads)],
+                        "name": f"{runs[n][3].label}: start ○, end ×, direction ▲",
                         "showlegend": False,
-                        "marker": {"symbol": ["circle-open", "x"], "size": 9, "color": st[n][0]},
+                        "marker": {
+                            "symbol": ["circle-open", "x", *(["triangle-up"] * len(heads))],
+                            "angle": [0.0, 0.0, *(90.0 - a for _, a in heads)],  # clockwise from up
+                            "size": 9,
+                            "color": st[n][0],
+                        },
                     }
                 )
         parts.append(

@@ -19,26 +19,35 @@ def _axes(ax, figsize=(4.6, 4.6)):
 SMALL_ORBIT = 0.25
 
 
-def _direction_marks(ax, x, y, color, n: int = 3) -> None:
-    """``n`` arrow heads along the path (equal arc-length spacing) pointing the way of travel;
-    drawn as rotated markers (exact on equal-aspect axes)."""
-    from matplotlib.markers import MarkerStyle
-    from matplotlib.transforms import Affine2D
-
+def direction_points(x, y, n: int = 3) -> list[tuple[int, float]]:
+    """``n`` places along a path (equal arc-length spacing) and the direction of travel there:
+    (sample index, angle from +x [deg]); none for a path that does not move."""
     x, y = np.asarray(x, float), np.asarray(y, float)
     seg = np.hypot(np.diff(x), np.diff(y))
     if x.size < 2 or not np.isfinite(seg).all() or seg.sum() <= 0:
-        return
+        return []
     s = np.concatenate([[0.0], np.cumsum(seg)])
+    out = []
     for f in (np.arange(n) + 0.5) / n:
         i = min(int(np.searchsorted(s, f * s[-1])), x.size - 2)
         j = i + 1
         while j < x.size - 1 and seg[j - 1] == 0.0:
             j += 1
-        ang = np.degrees(np.arctan2(y[j] - y[i], x[j] - x[i]))
+        out.append((i, float(np.degrees(np.arctan2(y[j] - y[i], x[j] - x[i])))))
+    return out
+
+
+def _direction_marks(ax, x, y, color, n: int = 3) -> None:
+    """Arrow heads at :func:`direction_points`, drawn as rotated markers (exact on equal-aspect
+    axes); the angle is kept in the line's gid for the interactive copy."""
+    from matplotlib.markers import MarkerStyle
+    from matplotlib.transforms import Affine2D
+
+    for i, ang in direction_points(x, y, n):
         mark = MarkerStyle(">", transform=Affine2D().rotate_deg(ang))
-        gid = f"direction:{ang}"  # the angle, for the interactive copy
-        ax.plot(x[i], y[i], ls="none", color=color, ms=7, label="_direction", marker=mark, gid=gid)
+        ax.plot(
+            x[i], y[i], ls="none", color=color, ms=7, label="_direction", marker=mark, gid=f"direction:{ang}"
+        )
 
 
 def _path(ax, ex, ey, label, marks: bool, first: bool, **kw):
