@@ -318,3 +318,25 @@ def test_equilibrium_short_bearing_against_ocvirk():
     e = op["eps"]
     S = (2 * R / L) ** 2 * (1 - e * e) ** 2 / (math.pi * e * math.sqrt(math.pi**2 * (1 - e * e) + 16 * e * e))
     assert S == pytest.approx((R / c) ** 2 * mu * N / (W / (2 * R * L)), rel=1e-9)
+
+
+def test_film_names_are_table_aliases():
+    # the π-film (alshaer2005) is the long bearing with Gümbel's condition [T21]: the same table
+    eps = [0.2, 0.6, 0.9]
+    a, b = bearing_table("alshaer2005", None, 1.0, eps), bearing_table("long", "gumbel", 1.0, eps)
+    assert list(a) == list(b)
+    for k in a:
+        np.testing.assert_array_equal(a[k], b[k])
+    with pytest.raises(ValueError, match=r"cavitation = 'reynolds' with model 'alshaer2005'.*'long'"):
+        bearing_table("alshaer2005", "reynolds", 1.0, eps)
+    with pytest.raises(ValueError, match=r"'ott' approximates 'alshaer2005'"):
+        bearing_table("ott", None, 1.0, eps)
+    # no cavitation given: Ocvirk's film takes the only one it has, the others Swift–Stieber
+    np.testing.assert_array_equal(
+        bearing_table("short", None, 0.25, eps)["sommerfeld"],
+        bearing_table("short", "gumbel", 0.25, eps)["sommerfeld"],
+    )
+    np.testing.assert_array_equal(
+        bearing_table("long", None, 1.0, eps)["sommerfeld"],
+        bearing_table("long", "reynolds", 1.0, eps)["sommerfeld"],
+    )

@@ -59,7 +59,7 @@ def test_run_lubricated_has_eccentricity_columns(tmp_path):
     )
     assert r.exit_code == 0, r.output
     header = [name(h) for h in (out / "timeseries.csv").read_text().splitlines()[0].split(",")]
-    assert {"ex_over_c", "ey_over_c", "h_min"} <= set(header)
+    assert {"ex_bushing_over_c", "ey_bushing_over_c", "h_min"} <= set(header)
 
 
 def test_film_force_csv_matches_python(tmp_path):
@@ -219,3 +219,23 @@ def test_a_compiling_run_says_so_and_how_long(capsys):
         prog.add_task("case", 1.0)
         slow_to_compile(2.0)
     assert prog.compile_s == 0.0 and prog._prog is None
+
+
+def test_progress_clocks_are_per_task():
+    """Each case's bar shows its own elapsed time: a task's clock starts at its first update and
+    stops when it completes (issue 29: every case showed the display's total)."""
+    import time
+
+    from jointdyn import cli
+
+    with cli._progress("reproduce") as prog:
+        a, b = prog.add_task("first", 1.0), prog.add_task("second", 1.0)
+        prog.update(a, 0.0)
+        time.sleep(0.3)
+        prog.update(a, 1.0)  # done after ≈ 0.3 s
+        prog.update(b, 0.0)
+        time.sleep(0.05)
+        prog.update(b, 1.0)
+        tasks = {t.description: t for t in prog._prog.tasks}
+    # the second case's clock never ran during the first one (sleep granularity ≪ 0.25 s)
+    assert tasks["first"].elapsed >= 0.3 and tasks["second"].elapsed < 0.25

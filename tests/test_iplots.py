@@ -62,6 +62,14 @@ def test_reproduction_page_carries_the_runs_and_plotly_js(dry, tmp_path):
     orbit, olay = _plot_args(html, "orbit")
     ex, ey = dry.last_revolutions(0.5).orbit("piston_pin")
     np.testing.assert_array_equal(orbit[1]["x"], ex)
+    marks = orbit[2]  # start ○, end × and three heads pointing the way the journal moves [T290]
+    assert marks["x"][:2] == [ex[0], ex[-1]] and marks["marker"]["symbol"][:2] == ["circle-open", "x"]
+    assert len(marks["x"]) == 5
+    for x, y, up in zip(marks["x"][2:], marks["y"][2:], marks["marker"]["angle"][2:]):
+        i = int(np.flatnonzero((ex == x) & (ey == y))[0])
+        step = np.array([ex[i + 1] - ex[i], ey[i + 1] - ey[i]])
+        head = np.array([np.sin(np.radians(up)), np.cos(np.radians(up))])  # plotly: clockwise from up
+        assert head @ step / np.linalg.norm(step) > 0.999
     assert olay["yaxis"]["scaleanchor"] == "x"  # e/c drawn at equal aspect
 
 

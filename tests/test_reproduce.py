@@ -30,7 +30,14 @@ def test_files_and_summary(quick_run):
     assert [r["case"] for r in rows] == ["perfect", "dry", "ott", "alshaer2005"]
     with open(out / "ott.csv") as f:
         header = next(csv.reader(f))
-    assert header[:5] == ["t", "crank_angle", "crank_moment", "ex_over_c", "ey_over_c"]
+    # units in the headers; the orbit in the bushing frame [T290]
+    assert header[:5] == [
+        "t [s]",
+        "crank_angle [rad]",
+        "crank_moment [N·m]",
+        "ex_bushing_over_c [-]",
+        "ey_bushing_over_c [-]",
+    ]
 
 
 def _browser():

@@ -48,9 +48,30 @@ COEFFICIENT_MODEL = {
 EPS_MAX = 0.999
 
 
+#: film-model names (``FILM_MODELS``) accepted as table models: name -> (table model, the film's
+#: own cavitation); ``finite`` is the same name in both lists (its cavitation is an option of both)
+FILM_ALIASES = {"alshaer2005": ("long", "gumbel")}  # the π-film: long bearing, half-Sommerfeld [T21]
+
+
 def _check_model(model, cavitation):
+    """(table model, cavitation) after the film-name aliases; ``cavitation`` None: the aliased
+    film's own, ``gumbel`` for ``short``, else Swift–Stieber (``reynolds``)."""
+    if model in FILM_ALIASES:
+        film = model
+        model, own = FILM_ALIASES[film]
+        if cavitation not in (None, own):
+            raise ValueError(
+                f"cavitation = {cavitation!r} with model {film!r}: that film is the {model!r} bearing with "
+                f"{own!r} cavitation" + (f"; use model 'long' for {cavitation!r}" if model == "long" else "")
+            )
+        cavitation = own
+    if cavitation is None:  # Ocvirk's film exists with Gümbel's condition only [T35]
+        cavitation = "gumbel" if model == "short" else "reynolds"
     if model not in MODELS:
-        raise ValueError(f"model = {model!r}: must be one of {', '.join(MODELS)}")
+        hint = " ('ott' approximates 'alshaer2005', it is not a table model)" if model == "ott" else ""
+        raise ValueError(
+            f"model = {model!r}: must be one of {', '.join(MODELS)} or a film name {list(FILM_ALIASES)}{hint}"
+        )
     check_cavitation(cavitation)
     if model == "short" and cavitation != "gumbel":
         raise ValueError(f"cavitation = {cavitation!r} with model 'short': Ocvirk's film allows only gumbel")
@@ -58,6 +79,7 @@ def _check_model(model, cavitation):
         raise ValueError(
             f"cavitation = {cavitation!r} with model 'long': closed forms exist for gumbel and reynolds only"
         )
+    return model, cavitation
 
 
 def finite_steady(eps: float, ld: float, cavitation: str = "reynolds", mesh=DEFAULT_MESH, cavitated=None):
@@ -126,18 +148,20 @@ def steady_quantities(model: str, cavitation: str, ld: float, eps: float, mesh=D
     return short_steady(eps, ld)
 
 
-def bearing_table(model: str, cavitation: str, ld: float, eps_list, mesh=DEFAULT_MESH) -> dict:
+def bearing_table(model: str, cavitation: str | None, ld: float, eps_list, mesh=DEFAULT_MESH) -> dict:
     """Steady design table [T77]: dict column → array (``COLUMNS``), one entry per ε; for the
     films in ``COEFFICIENT_MODEL`` also the dynamic coefficients and Lund's stability threshold
     (``COEFFICIENT_COLUMNS``, dimensionless k = Kc/W, c = Ccω/W, M̄ = mcω²/W; [T107–T108]).
 
-    model       "finite" (2-D Reynolds [T70–T72]), "long" (L/D → ∞ [T78]) or "short" (Ocvirk [T79])
-    cavitation  "reynolds" (Swift–Stieber, as Raimondi–Boyd) or "gumbel" (half-Sommerfeld)
+    model       "finite" (2-D Reynolds [T70–T72]), "long" (L/D → ∞ [T78]) or "short" (Ocvirk [T79]);
+                a film name of ``FILM_ALIASES`` (``alshaer2005`` = long with gumbel) is accepted
+    cavitation  "reynolds" (Swift–Stieber, as Raimondi–Boyd) or "gumbel" (half-Sommerfeld);
+                None: the aliased film's own, gumbel for short, else reynolds
     ld          L/D > 0 [-] (``long`` uses it only in the ``ld`` column)
     eps_list    eccentricity ratios, each in (0, 1) [-]
     mesh        finite-volume mesh of ``finite`` (cells around, cells on the half length) [-]
     """
-    _check_model(model, cavitation)
+    model, cavitation = _check_model(model, cavitation)
     check_ld(float(ld))
     e = _check_eps_list(eps_list)
     cav = None
@@ -164,7 +188,7 @@ def equilibrium(
     clearance: float,
     viscosity: float,
     model: str = "finite",
-    cavitation: str = "reynolds",
+    cavitation: str | None = None,
     mesh=DEFAULT_MESH,
 ) -> dict:
     """Steady operating point for a load W and journal speed N [T77]: solves S(ε) = S_given.
@@ -175,6 +199,7 @@ def equilibrium(
     length     bearing length L > 0 [m]
     clearance  radial clearance c > 0 [m]
     viscosity  μ > 0 [Pa·s]
+    model, cavitation as :func:`bearing_table`
     Returns dict: eps [-], attitude_deg [deg], h_min [m], friction_torque [N·m] (on the journal,
     resisting), power_loss [W], peak_pressure [Pa], theta_pmax_deg, theta_end_deg [deg],
     flow [m³/s], side_flow [m³/s], sommerfeld [-].
@@ -189,7 +214,7 @@ def equilibrium(
     ):
         if not (math.isfinite(v) and v > 0.0):
             raise ValueError(f"{name} = {v!r} [{unit}]: must be finite and > 0")
-    _check_model(model, cavitation)
+    model, cavitation = _check_model(model, cavitation)
     ld = length / (2.0 * radius)
     S_given = (radius / clearance) ** 2 * viscosity * speed / (load / (2.0 * radius * length))
 

@@ -31,8 +31,10 @@ def _floats(text: str, name: str) -> list[float]:
 
 
 def bearing_table_cmd(
-    model: str = typer.Option("finite", help="finite | long | short"),
-    cavitation: str = typer.Option("reynolds", help="reynolds (Swift–Stieber, default) | gumbel"),
+    model: str = typer.Option("finite", help="finite | long | short | alshaer2005 (film name: long, gumbel)"),
+    cavitation: str = typer.Option(
+        None, help="reynolds (Swift–Stieber, default) | gumbel (default of short and alshaer2005)"
+    ),
     ld: float = typer.Option(..., help="length/diameter ratio L/D (> 0)"),
     eps: str = typer.Option(
         "0.1,0.2,0.4,0.6,0.8,0.9,0.97", help="eccentricity ratios: 0.1,0.5,... or a range first:last:count"

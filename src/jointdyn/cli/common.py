@@ -158,6 +158,7 @@ class _progress:
         self.description = description
         self._prog = None
         self._tasks: list = []
+        self._running: set = set()
         self.compile_s = 0.0
 
     def __enter__(self):
@@ -192,12 +193,18 @@ class _progress:
                 console=console,
                 transient=False,
             )
-            self._ids = [self._prog.add_task(escape(n), total=t) for n, t in self._tasks]
+            # each task's clock starts at its own first update: per-task elapsed times
+            self._ids = [self._prog.add_task(escape(n), total=t, start=False) for n, t in self._tasks]
             self._prog.start()
         return self._prog
 
     def update(self, task: int, completed: float) -> None:
-        self._started().update(self._ids[task], completed=completed)
+        prog = self._started()
+        tid = self._ids[task]
+        if tid not in self._running:
+            self._running.add(tid)
+            prog.start_task(tid)
+        prog.update(tid, completed=completed)
 
     def compiling(self, seconds: float | None) -> None:
         """A top-level compilation starts (None) or ended after ``seconds`` [s]."""

@@ -85,7 +85,8 @@ def dynamic_coefficients(model: str, ld: float, eps: float) -> dict:
     """Dimensionless stiffness and damping coefficients at the static equilibrium with eccentricity
     ratio ε ∈ (0, 1) of film model ``model`` (``FILM_MODELS``) and length ratio ld = L/D [-]
     [T105–T108]. Returns a dict with ``kxx, kxy, kyx, kyy, cxx, cxy, cyx, cyy`` (k = Kc/W,
-    c = Ccω/W), ``eps``, ``attitude`` [rad], ``sommerfeld`` [-], ``critical_mass`` (Lund's
+    c = Ccω/W), ``eps``, ``attitude`` [rad] (``bearing-table``'s ``attitude_deg`` is the same angle
+    in degrees), ``sommerfeld`` [-], ``critical_mass`` (Lund's
     M̄ = m c ω²/W at the threshold, inf if stable for any mass) and ``whirl_ratio`` ν/ω [-]."""
     _check(model, ld, eps)
     F, dF_de, dF_ded = _film_cartesian(model, ld, eps)

@@ -178,13 +178,23 @@ METRIC_ALIASES = {
     "energy_dissipated": f"{PIN}.energy_dissipated",
 }
 #: units of the derived headline columns (element outputs take the element's own)
-HEADLINE_UNITS = {"crank_angle": "rad", "crank_moment": "N·m", "ex_over_c": "-", "ey_over_c": "-"}
+HEADLINE_UNITS = {
+    "t": "s",
+    "crank_angle": "rad",
+    "crank_moment": "N·m",
+    "ex_bushing_over_c": "-",
+    "ey_bushing_over_c": "-",
+}
+#: headline column names before the orbit convention [T290] (world-frame components, named without
+#: their frame): new name -> old name, for readers of old run directories
+RENAMED = {"ex_bushing_over_c": "ex_over_c", "ey_bushing_over_c": "ey_over_c"}
 
 
 def table(res) -> dict[str, np.ndarray]:
     """Time series of a slider-crank run: t [s], crank_angle [rad, unwrapped], crank_moment
     [N·m] (the drive's moment on the crank, CCW positive), and for an imperfect piston pin
-    ex_over_c, ey_over_c [-], h_min [m], joint_force [N] (magnitude on the journal),
+    ex_bushing_over_c, ey_bushing_over_c [-] (eccentricity over the clearance in the frame of the
+    bushing, the rod eye [T290]), h_min [m], joint_force [N] (magnitude on the journal),
     contact_force [N]."""
     cols = {
         "t": res.t,
@@ -192,9 +202,7 @@ def table(res) -> dict[str, np.ndarray]:
         "crank_moment": post.driving_moment(res, "drive"),
     }
     if PIN in res.system.element_names:
-        c = res.system.elements[res.system.element_names.index(PIN)].clearance
-        cols["ex_over_c"] = res.element(PIN, "ex") / c
-        cols["ey_over_c"] = res.element(PIN, "ey") / c
+        cols["ex_bushing_over_c"], cols["ey_bushing_over_c"] = res.orbit(PIN, frame="bushing")
         cols["h_min"] = res.element(PIN, "h_min")
         cols["joint_force"] = np.hypot(res.element(PIN, "Fx"), res.element(PIN, "Fy"))
         cols["contact_force"] = res.element(PIN, "contact_force")

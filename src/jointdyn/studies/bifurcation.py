@@ -265,7 +265,8 @@ def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> 
     xx = np.repeat(x[:, None], v.shape[1], axis=1)
     a1.plot((xx * scale).ravel(), v.ravel(), ",", color="k", alpha=0.6)
     a1.plot((xx * scale).ravel(), v.ravel(), ".", ms=1.2, color="k", alpha=0.4)
-    a1.set_ylabel(f"{variable} at phase {ds.attrs.get('section_angle_deg', 0):g}° [-]")
+    frame = ", world frame" if variable.startswith(("ex", "ey")) else ""  # the section variables [T290]
+    a1.set_ylabel(f"{variable} at phase {ds.attrs.get('section_angle_deg', 0):g}° [-]{frame}")
     a1.set_title(title or f"bifurcation diagram over {p}")
     imp = ds["impacts_per_rev"].values
     if np.isfinite(imp).any():

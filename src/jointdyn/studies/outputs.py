@@ -3,9 +3,10 @@
 Every run directory holds ``results.nc``, ``timeseries.csv`` (units in the headers: the
 model's headline columns first, then every coordinate, velocity, multiplier and every force
 element's declared outputs), ``summary.json``, the figures ``moment.png`` (first angle driver)
-and ``orbit.png`` (first journal element), ``model.toml`` when the run came from a model file,
-and ``manifest.json`` (written last, see :mod:`jointdyn.io.rundir`). Names and units come from
-the system (coordinate labels, constraint types, the elements' ``OUTPUTS``), never a side list.
+and ``orbit.png`` (first journal element, bushing frame [T290]), ``model.toml`` when the run came
+from a model file, and ``manifest.json`` (written last, see :mod:`jointdyn.io.rundir`). Names and
+units come from the system (coordinate labels, constraint types, the elements' ``OUTPUTS``),
+never a side list.
 """
 
 from __future__ import annotations
@@ -93,13 +94,13 @@ def summary(res, status: str = "complete", aliases: dict[str, str] | None = None
 
 def figures(res, title: str) -> dict:
     """``{file name: Figure}``: moment.png (first driver's moment vs its body angle) and
-    orbit.png (first journal element's orbit in units of its clearance)."""
+    orbit.png (first journal element's orbit e/c in the bushing frame [T290])."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    from jointdyn.viz import plots
+    from jointdyn.viz import plots, style
 
     figs = {}
     s = res.system
@@ -116,10 +117,10 @@ def figures(res, title: str) -> dict:
         figs["moment.png"] = fig
     js = journal_elements(s)
     if js:
-        c = s.elements[s.element_names.index(js[0])].clearance
-        fig, ax = plt.subplots(figsize=(5, 5))
-        plots.journal_orbit(res.element(js[0], "ex") / c, res.element(js[0], "ey") / c, ax=ax)
-        ax.set_title(title)
+        fig, ax = plt.subplots(figsize=(5, 5.4))
+        plots.journal_orbit(*res.orbit(js[0], frame="bushing"), ax=ax, label=js[0], frame="bushing")
+        ax.set_title(f"{title}\n{js[0]}: journal centre path, bushing frame", fontsize=9)
+        style.legend_below(ax, ncol=4, y=-0.13)
         fig.tight_layout()
         figs["orbit.png"] = fig
     return figs

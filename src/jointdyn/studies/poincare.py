@@ -174,13 +174,13 @@ def plot_sections(sections: dict, path, title: str = "") -> None:
         ax.plot(np.cos(th), np.sin(th), color="0.6", lw=0.8, label="clearance circle")
         ax.plot(v["ex_over_c"], v["ey_over_c"], ".", ms=3, color="C0")
         ax.set_aspect("equal")
-        ax.set_xlabel("e_x / c [-]")
-        ax.set_ylabel("e_y / c [-]")
+        ax.set_xlabel("e_x / c [-], world frame")  # the section variables' frame [T290]
+        ax.set_ylabel("e_y / c [-], world frame")
         ax.set_title(f"{name}: {len(sec.t)} points")
         ax = axes[1, col]
         ax.plot(v["ex_over_c"], v["exdot_over_cw"], ".", ms=3, color="C1")
-        ax.set_xlabel("e_x / c [-]")
-        ax.set_ylabel("ė_x / (c ω) [-]")
+        ax.set_xlabel("e_x / c [-], world frame")
+        ax.set_ylabel("ė_x / (c ω) [-], world frame")
         ax.ticklabel_format(useOffset=False)
     if title:
         fig.suptitle(title)

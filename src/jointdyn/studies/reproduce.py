@@ -20,8 +20,10 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn import post
+from jointdyn.models import slider_crank as sc
+from jointdyn.studies.outputs import header
 from jointdyn.studies.runs import run_shipped
-from jointdyn.viz.reproduce_figures import drawing
+from jointdyn.viz.reproduce_figures import caption, drawing
 
 
 @dataclass(frozen=True)
@@ -102,6 +104,19 @@ def run_case(case: Case, revs: float, progress=None):
     return res, cols, summ
 
 
+#: columns of ``<case>.csv`` and their units (the orbit in the bushing frame, [T290])
+CASE_COLUMNS = (
+    "t",
+    "crank_angle",
+    "crank_moment",
+    "ex_bushing_over_c",
+    "ey_bushing_over_c",
+    "h_min",
+    "joint_force",
+)
+CASE_UNITS = {**sc.HEADLINE_UNITS, "h_min": "m", "joint_force": "N"}
+
+
 def _csv(header, rows) -> bytes:
     buf = io.StringIO()
     w = csv.writer(buf)
@@ -117,11 +132,11 @@ def csv_files(runs: dict) -> dict[str, bytes]:
             SUMMARY_COLUMNS, ([_fmt(s.get(c, "")) for c in SUMMARY_COLUMNS] for _, _, s, _ in runs.values())
         )
     }
-    names = ["t", "crank_angle", "crank_moment", "ex_over_c", "ey_over_c", "h_min", "joint_force"]
     for n, (_, cols, _, _) in runs.items():
         empty = [""] * len(cols["t"])
         out[f"{n}.csv"] = _csv(
-            names, ([_fmt(v) for v in row] for row in zip(*[cols.get(c, empty) for c in names]))
+            [header(c, CASE_UNITS[c]) for c in CASE_COLUMNS],
+            ([_fmt(v) for v in row] for row in zip(*[cols.get(c, empty) for c in CASE_COLUMNS])),
         )
     return out
 
@@ -189,7 +204,9 @@ def discussion(runs: dict) -> list[str]:
             )
     if "ott" in s and "alshaer2005" in s:
         a, b = runs["ott"][1], runs["alshaer2005"][1]
-        d = np.hypot(a["ex_over_c"] - b["ex_over_c"], a["ey_over_c"] - b["ey_over_c"]).max()
+        d = np.hypot(
+            a["ex_bushing_over_c"] - b["ex_bushing_over_c"], a["ey_bushing_over_c"] - b["ey_bushing_over_c"]
+        ).max()
         out.append(
             f"Journal paths of Ott and the π-film differ by up to {d:.3f}·c: Ott's model is a "
             f"rational approximation of the same π-film [T165], 5–25 % off at moderate ξ and "
@@ -241,14 +258,15 @@ def report_html(runs: dict, figs: dict, revs: float, params: dict, ens: dict | N
         if name not in figs:
             return ""
         b64 = base64.b64encode(figs[name]).decode()
-        img_tag = f'<img alt="{name}" src="data:image/png;base64,{b64}" width="{width}">'
-        return f"<figure>{img_tag}<figcaption>{name}</figcaption></figure>"
+        text = html.escape(caption(name.removesuffix(".png"), runs))
+        img_tag = f'<img alt="{text}" src="data:image/png;base64,{b64}" width="{width}">'
+        return f'<figure style="max-width:{width}px">{img_tag}<figcaption>{text}</figcaption></figure>'
 
     rows = "".join(
         "<tr>" + "".join(f"<td>{html.escape(_short(s.get(c, '')))}</td>" for c in SUMMARY_COLUMNS) + "</tr>"
         for _, (_, _, s, _) in runs.items()
     )
-    head = "".join(f"<th>{c}</th>" for c in SUMMARY_COLUMNS)
+    head = "".join(f"<th>{c.replace('_', '_<wbr>')}</th>" for c in SUMMARY_COLUMNS)
     par = "".join(
         f"<tr><td>{html.escape(k)}</td><td>{html.escape(str(v))}</td></tr>" for k, v in params.items()
     )
@@ -264,12 +282,14 @@ def report_html(runs: dict, figs: dict, revs: float, params: dict, ens: dict | N
     body = f"""<!DOCTYPE html><html><head><meta charset="utf-8"><title>{title}</title>
 <style>body{{font-family:sans-serif;max-width:1100px;margin:auto}}
 table{{border-collapse:collapse;font-size:12px}}
-td,th{{border:1px solid #bbb;padding:2px 6px}} figure{{display:inline-block;margin:6px}}</style></head><body>
+td,th{{border:1px solid #bbb;padding:2px 6px}} figure{{display:inline-block;margin:6px;vertical-align:top}}
+figcaption{{font-size:12px}} .wide{{overflow-x:auto;max-width:100%}} img{{max-width:100%;height:auto}}</style>
+</head><body>
 <h1>Slider-crank with a lubricated piston pin — reproduction of Alshaer et al., J. Mech. Des. 127 (2005)</h1>
 <p>{revs:g} crank revolutions at 5000 rpm; moments over the last revolution (columns *_all: whole run).
 Film models: Ott (corrected, docs/theory.md T20–T39) and the paper's π-film in the branch-free form
 of T21/T163; dry contact Lankarani–Nikravesh (T50–T56).</p>
-{interactive}<h2>Summary</h2><table><tr>{head}</tr>{rows}</table>
+{interactive}<h2>Summary</h2><div class="wide"><table><tr>{head}</tr>{rows}</table></div>
 <h2>Paper figures</h2>
 {"".join(img(f"moment_{n}.png") for n in paper)}
 {img("moment_overlay.png", 800)}
@@ -334,7 +354,6 @@ def reproduce_alshaer2005(
 
 def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
     from jointdyn.core import interrupts
-    from jointdyn.models import slider_crank as sc
 
     runs = {}
     for case in cases:

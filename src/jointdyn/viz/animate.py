@@ -109,7 +109,7 @@ def animate(results_file, out, frames: int = 120, fps: int = 20, last_revs: floa
     for n, name in enumerate(journals):
         ins = fig.add_subplot(gs[n, 1])
         ex, ey = res.orbit(name)
-        plots.journal_orbit(ex, ey, ax=ins, start=False, color="0.55", lw=0.6)
+        plots.journal_orbit(ex, ey, ax=ins, start=False, zoom=False, color="0.55", lw=0.6)
         dot = ins.plot([], [], "o", color="tab:red", ms=6)[0]
         ins.set_title(f"{name}: e/c (bushing frame)", fontsize=8)
         ins.set_xlabel("")

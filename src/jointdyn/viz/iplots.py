@@ -39,6 +39,15 @@ def _text(s: str) -> str:
     )
 
 
+def _marker(ln) -> dict:
+    """The plotly marker of a matplotlib line (direction heads of an orbit keep their angle)."""
+    gid = ln.get_gid() or ""
+    if gid.startswith("direction:"):  # plotly's angle: degrees clockwise from up
+        return {"symbol": "triangle-up", "angle": 90.0 - float(gid.split(":")[1]), "size": 9}
+    symbol = {"o": "circle-open", "x": "x", "v": "triangle-down"}.get(str(ln.get_marker()), "circle")
+    return {"symbol": symbol, "size": 8}
+
+
 def from_axes(ax, height: int = 450):
     """A plotly Figure with the lines, markers and annotations of a matplotlib Axes."""
     go = _plotly()
@@ -62,12 +71,7 @@ def from_axes(ax, height: int = 450):
                     "width": ln.get_linewidth(),
                     "dash": dash.get(ln.get_linestyle(), "solid"),
                 },
-                marker={
-                    "symbol": {"o": "circle-open", "x": "x", "v": "triangle-down"}.get(
-                        str(ln.get_marker()), "circle"
-                    ),
-                    "size": 8,
-                },
+                marker=_marker(ln),
             )
         )
     for t in ax.texts:
@@ -171,13 +175,20 @@ def reproduction_html(runs: dict, out, revs: float) -> Path:
     The figure specs are written directly as plotly.js data and layout (no plotly Figure objects:
     building and validating those took ≈ 40 MB and most of the page's time, [T173])."""
     from jointdyn import post
+    from jointdyn.viz.orbit import direction_points
+    from jointdyn.viz.style import PLOTLY_DASH, styles
+
+    st = styles(list(runs))  # the colours and dashes of the report's PNGs
+
+    def line(n: str) -> dict:
+        return {"width": 1, "color": st[n][0], "dash": PLOTLY_DASH[st[n][1]]}
 
     moments = []
-    for res, _, _, case in runs.values():
+    for n, (res, _, _, case) in runs.items():
         a = res.crank_angle()
         x, y = np.degrees(a - a[0]), post.driving_moment(res)
         moments.append(
-            {"type": "scatter", "mode": "lines", "x": x, "y": y, "name": case.label, "line": {"width": 1}}
+            {"type": "scatter", "mode": "lines", "x": x, "y": y, "name": case.label, "line": line(n)}
         )
     parts = [
         _plot(
@@ -212,16 +223,34 @@ def reproduction_html(runs: dict, out, revs: float) -> Path:
                     "x": ex,
                     "y": ey,
                     "name": runs[n][3].label,
-                    "line": {"width": 1},
+                    "line": line(n),
                 }
             )
+            if len(ex):  # start ○, end × and the direction of travel, in the path's colour
+                heads = direction_points(ex, ey)
+                orbits.append(
+                    {
+                        "type": "scatter",
+                        "mode": "markers",
+                        "x": [ex[0], ex[-1], *(ex[i] for i, _ in heads)],
+                        "y": [ey[0], ey[-1], *(ey[i] for i, _ in heads)],
+                        "name": f"{runs[n][3].label}: start ○, end ×, direction ▲",
+                        "showlegend": False,
+                        "marker": {
+                            "symbol": ["circle-open", "x", *(["triangle-up"] * len(heads))],
+                            "angle": [0.0, 0.0, *(90.0 - a for _, a in heads)],  # clockwise from up
+                            "size": 9,
+                            "color": st[n][0],
+                        },
+                    }
+                )
         parts.append(
             _plot(
                 "orbit",
                 orbits,
-                "journal centre path e/c, last revolution, rod (bushing) frame",
-                "e_x/c [-]",
-                "e_y/c [-]",
+                "journal centre path e/c in the bushing (rod-eye) frame, last revolution (start ○, end ×)",
+                "e_x/c [-], bushing frame",
+                "e_y/c [-], bushing frame",
                 yaxis={"scaleanchor": "x", "scaleratio": 1},
                 height=820,
                 width=700,

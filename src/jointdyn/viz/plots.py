@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn.units import to_rpm
+from jointdyn.viz import style
+from jointdyn.viz.orbit import journal_orbit as journal_orbit  # the orbit figure, re-exported
 
 WHATS = ("moment", "orbit", "film", "contact", "energy")
 FRAMES = ("bushing", "world")
@@ -53,44 +55,6 @@ def series_vs_angle(angle, values, ylabel, ax=None, label=None, **kw):
     if deg.size:
         ax.set_xlim(deg.min(), deg.max())
         _angle_ticks(ax, float(np.ptp(deg)))
-    ax.grid(True, alpha=0.3)
-    return ax
-
-
-def journal_orbit(ex_over_c, ey_over_c, ax=None, label=None, frame: str | None = None, start=True, **kw):
-    """Journal-centre path e/c [-] inside the clearance circle (ξ = 1, dashed), with the start
-    (○) and end (×) marked; ``frame`` names the frame of the components in the axis labels."""
-    ax = _axes(ax, figsize=(4.6, 4.6))
-    th = np.linspace(0, 2 * np.pi, 361)
-    if not getattr(ax, "_jd_circle", False):
-        ax.plot(np.cos(th), np.sin(th), "k--", lw=0.8, label="clearance circle (ξ = 1)")
-        ax._jd_circle = True  # type: ignore[attr-defined]
-    (line,) = ax.plot(ex_over_c, ey_over_c, label=label, lw=kw.pop("lw", 0.8), **kw)
-    if start and len(ex_over_c):
-        first = not getattr(ax, "_jd_marks", False)
-        ax._jd_marks = True  # type: ignore[attr-defined]
-        ax.plot(
-            ex_over_c[0],
-            ey_over_c[0],
-            "o",
-            color=line.get_color(),
-            mfc="none",
-            ms=7,
-            label="start" if first else None,
-        )
-        ax.plot(
-            ex_over_c[-1], ey_over_c[-1], "x", color=line.get_color(), ms=7, label="end" if first else None
-        )
-    ax.set_aspect("equal")
-    lim = max(1.1, 1.05 * float(np.nanmax(np.hypot(ex_over_c, ey_over_c))) if len(ex_over_c) else 1.1)
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, lim)
-    ticks = [-1.0, -0.5, 0.0, 0.5, 1.0]
-    ax.set_xticks(ticks)
-    ax.set_yticks(ticks)
-    where = f" ({frame} frame)" if frame else ""
-    ax.set_xlabel(f"$e_x/c$ [-]{where}")
-    ax.set_ylabel(f"$e_y/c$ [-]{where}")
     ax.grid(True, alpha=0.3)
     return ax
 
@@ -204,6 +168,7 @@ def run_figure(
     labels = list(labels) if labels else [r.system.name for r in runs]
     many = len(runs) > 1
     ax = _axes(ax, figsize=(5.2, 5.2) if what == "orbit" else (8, 4.5))
+    ax.set_prop_cycle(style.cycle())  # Okabe–Ito colours with dash patterns, as in every figure
     revs = last_revs
     for run, lab in zip(runs, labels):
         revs = _auto_revs(run, what, last_revs)
@@ -290,11 +255,14 @@ def run_figure(
         _finish_x(ax, xs, is_angle)
     if len(runs) == 1:
         window = ("\nlast revolution" if revs == 1 else f"\nlast {revs:g} revolutions") if revs else ""
-        ax.set_title(describe(runs[0]) + window, fontsize=9)
+        what_ = f"\njournal centre path e/c, {frame} frame" if what == "orbit" else ""
+        ax.set_title(describe(runs[0]) + window + what_, fontsize=9)
+    elif what == "orbit":
+        ax.set_title(f"journal centre path e/c, {frame} frame", fontsize=9)
     if what == "orbit":
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=4, frameon=False)
-    else:
-        ax.legend(fontsize=8, loc="best")
+        style.legend_below(ax, ncol=4, y=-0.14)
+    else:  # outside the data: under the axis label
+        style.legend_below(ax, ncol=2, y=-0.16)
     return ax
 
 

@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn import post
-from jointdyn.viz import plots
+from jointdyn.viz import plots, style
 
 
 def _png(fig) -> bytes:
@@ -27,15 +27,11 @@ def _png(fig) -> bytes:
 
 
 PAPER = ("perfect", "dry", "ott", "alshaer2005")
-#: one colour per case, the same in every figure
-COLORS = {"perfect": "k", "dry": "tab:red", "ott": "tab:orange", "alshaer2005": "tab:blue"}
-_MORE = ("tab:green", "tab:purple", "tab:brown", "tab:pink", "tab:olive", "tab:cyan", "tab:gray")
 
 
-def _colors(names) -> dict[str, str]:
-    """Paper cases keep their colour; the others get distinct ones in order."""
-    extra = iter(_MORE * 3)
-    return {n: COLORS[n] if n in COLORS else next(extra) for n in names}
+def _styles(names) -> dict[str, tuple[str, str]]:
+    """One (colour, dash) per case, the same in every figure and in interactive.html."""
+    return style.styles(list(names))
 
 
 def _last(res, revs: float):
@@ -49,13 +45,11 @@ def _deg(res):
 
 
 def _sheet(fig, size, *grid, **kw):
-    """The report's one figure, cleared and resized to ``size`` [in], with new subplots (a new
-    Figure per plot kept ≈ 3 MB each in matplotlib's native text caches, [T173])."""
-    from matplotlib import rcParams
-
+    """The report's one figure, cleared and resized to ``size`` [in], with new subplots, laid
+    out by matplotlib's constrained layout (legends outside the axes get their room); a new
+    Figure per plot kept ≈ 3 MB each in matplotlib's native text caches, [T173]."""
     fig.clf()
-    pars = ("left", "right", "bottom", "top", "wspace", "hspace")  # clf() keeps the last tight_layout
-    fig.subplots_adjust(**{k: rcParams[f"figure.subplot.{k}"] for k in pars})
+    fig.set_layout_engine("constrained")
     fig.set_size_inches(*size)
     return fig.subplots(*grid, **kw)
 
@@ -68,8 +62,10 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     import matplotlib.pyplot as plt
 
     fig = plt.figure()
+    out: dict[str, bytes] = {}
     try:
-        return _figures(fig, runs, revs)
+        draw_all(fig, runs, revs, lambda name, f: out.__setitem__(name, _png(f)))
+        return out
     finally:
         plt.close(fig)
 
@@ -127,9 +123,74 @@ def _draw(src: str, dst: str, parent: int) -> None:
     write_bytes(Path(dst), pickle.dumps(figures(runs, revs), protocol=pickle.HIGHEST_PROTOCOL))
 
 
-def _figures(fig, runs: dict, revs: float) -> dict[str, bytes]:
-    figs = {}
-    col = _colors(runs)
+def _angle_axis(ax, revs: float, one: str) -> None:
+    ax.set_xlabel(f"crank angle [deg], {one}")
+    ax.set_xlim(0, 360 * min(1.0, revs))
+    plots._angle_ticks(ax, 360 * min(1.0, revs))
+
+
+def _moment(ax, r, label, st, **kw):
+    colour, dash = st
+    return ax.plot(_deg(r), post.driving_moment(r), color=colour, ls=dash, label=label, **kw)
+
+
+def _below(fig, ncol: int = 2):
+    """One legend for the whole figure, under its axes (outside every curve)."""
+    handles, labels = [], []
+    for ax in fig.axes:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            if lab not in labels:
+                handles.append(h)
+                labels.append(lab)
+    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
+
+
+def _coincident(curves: dict, tol: float = 0.02) -> dict[str, str]:
+    """``{name: earlier name}`` for curves within ``tol`` (relative) of an earlier one everywhere:
+    drawn on top of each other, the legend says so."""
+    out: dict[str, str] = {}
+    names = list(curves)
+    for k, n in enumerate(names):
+        for m in names[:k]:
+            a, b = curves[n], curves[m]
+            if a.shape == b.shape and np.all(np.abs(a - b) <= tol * np.maximum(np.abs(b), 1e-300)):
+                out[n] = m
+                break
+    return out
+
+
+#: what each report figure shows (its caption in report.html)
+CAPTIONS = {
+    "moment_overlay": "Crank driving moment over the last revolution: the lubricated joints against the "
+    "perfect joint (top) and the dry clearance joint with its impact spikes on its own scale (bottom).",
+    "moment_beyond": "Crank driving moment over the last revolution for the cases beyond the paper "
+    "(clearance, viscosity, finite length, film shear), with the perfect joint for reference.",
+    "film_thickness": "Minimum film thickness of the lubricated piston pin over the last revolution "
+    "(log scale); curves within 2 % of another are drawn dashed on top and say so in the legend.",
+    "joint_force": "Magnitude of the force on the piston pin over the last revolution, against the "
+    "perfect joint's reaction; the largest sampled value and the run's record are given per panel.",
+}
+
+
+def caption(name: str, runs: dict) -> str:
+    """The caption of the report figure ``name`` (a file name without ``.png``)."""
+    if name in CAPTIONS:
+        return CAPTIONS[name]
+    kind, _, case = name.partition("_")
+    label = runs[case][3].label if case in runs else case
+    if kind == "moment":
+        return f"Crank driving moment over the whole run: {label}."
+    if kind == "orbit":
+        return (
+            f"Journal-centre path e/c in the bushing (rod-eye) frame over the last revolution, inside "
+            f"the clearance circle, with start, end and direction of travel: {label}."
+        )
+    return name
+
+
+def draw_all(fig, runs: dict, revs: float, emit) -> None:
+    """Draw every report figure on ``fig`` in turn; ``emit(file name, fig)`` is called after each."""
+    st = _styles(runs)
     names = [n for n in PAPER if n in runs]
     last = {n: _last(runs[n][0], revs) for n in runs}
     one = "last revolution" if revs >= 1 else f"{revs:g} revolution"
@@ -137,127 +198,125 @@ def _figures(fig, runs: dict, revs: float) -> dict[str, bytes]:
         ax = _sheet(fig, (8, 3.8))
         res = runs[n][0]
         plots.moment_vs_angle(
-            res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=col[n]
+            res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=st[n][0]
         )
         ax.set_title(f"crank driving moment, {revs:g} revolutions — {runs[n][3].label}", fontsize=10)
-        fig.tight_layout()
-        figs[f"moment_{n}.png"] = _png(fig)
+        emit(f"moment_{n}.png", fig)
     # overlay: smooth cases on their own scale, the dry joint's spikes in a panel of their own
     smooth = [n for n in names if n != "dry"]
     panels = 2 if "dry" in names else 1
-    axs = _sheet(fig, (8, 3.6 * panels), panels, 1, sharex=True, squeeze=False)
+    axs = _sheet(fig, (8, 3.4 * panels + 0.8), panels, 1, sharex=True, squeeze=False)
     for n in smooth:
-        r = last[n]
-        axs[0, 0].plot(
-            _deg(r),
-            post.driving_moment(r),
-            color=col[n],
-            lw=1.2 if n != "perfect" else 1.8,
-            ls="--" if n == "perfect" else "-",
-            label=runs[n][3].label,
-            zorder=3 if n == "perfect" else 2,
-        )
+        wide = n == "perfect"
+        _moment(axs[0, 0], last[n], runs[n][3].label, st[n], lw=1.8 if wide else 1.2, zorder=3 if wide else 2)
     axs[0, 0].set_title(f"crank driving moment, {one}", fontsize=10)
     if panels == 2:
         for n in ("perfect", "dry"):
             if n in runs:
-                r = last[n]
-                axs[1, 0].plot(
-                    _deg(r),
-                    post.driving_moment(r),
-                    color=col[n],
-                    lw=1.0,
-                    ls="--" if n == "perfect" else "-",
-                    label=runs[n][3].label,
+                _moment(
+                    axs[1, 0], last[n], runs[n][3].label, st[n], lw=1.0, zorder=3 if n == "perfect" else 2
                 )
         axs[1, 0].set_title("dry clearance joint (own scale: impact spikes)", fontsize=10)
-    for k, ax in enumerate(axs[:, 0]):
+    for ax in axs[:, 0]:
         ax.set_ylabel("moment [N·m]")
         ax.grid(True, alpha=0.3)
-        # the dry spikes reach down on the left half: its legend goes lower right
-        ax.legend(fontsize=8, loc="lower left" if k == 0 else "lower right")
-    axs[-1, 0].set_xlabel(f"crank angle [deg], {one}")
-    axs[-1, 0].set_xlim(0, 360 * min(1.0, revs))
-    plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
-    fig.tight_layout()
-    figs["moment_overlay.png"] = _png(fig)
+    _angle_axis(axs[-1, 0], revs, one)
+    _below(fig)
+    emit("moment_overlay.png", fig)
     beyond = [n for n in runs if n not in names]
     if beyond:
-        ax = _sheet(fig, (8, 4.4))
+        ax = _sheet(fig, (8, 5.0))
         for n in ["perfect"] + beyond if "perfect" in runs else beyond:
-            r = last[n]
-            ax.plot(
-                _deg(r),
-                post.driving_moment(r),
-                lw=1.0,
-                label=runs[n][3].label,
-                color=col[n],
-                ls="--" if n == "perfect" else "-",
-                zorder=3 if n == "perfect" else 2,
-            )
+            wide = n == "perfect"
+            _moment(ax, last[n], runs[n][3].label, st[n], lw=1.4 if wide else 1.1, zorder=3 if wide else 2)
         ax.set_title(f"beyond the paper: clearance, viscosity, finite length, shear ({one})", fontsize=10)
-        ax.set_xlabel(f"crank angle [deg], {one}")
         ax.set_ylabel("moment [N·m]")
-        ax.set_xlim(0, 360 * min(1.0, revs))
-        plots._angle_ticks(ax, 360 * min(1.0, revs))
+        _angle_axis(ax, revs, one)
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8, loc="lower left")
-        fig.tight_layout()
-        figs["moment_beyond.png"] = _png(fig)
+        _below(fig)
+        emit("moment_beyond.png", fig)
     for n in [n for n in runs if "piston_pin" in runs[n][0].journals()]:
-        ax = _sheet(fig, (4.8, 5.2))
+        ax = _sheet(fig, (4.8, 5.4))
         ex, ey = last[n].orbit("piston_pin", frame="bushing")
-        plots.journal_orbit(ex, ey, ax=ax, frame="rod", color=col[n], label="journal centre")
-        ax.set_title(f"journal centre path, {one}\n{runs[n][3].label}", fontsize=9)
-        ax.legend(fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.13), ncol=4, frameon=False)
-        fig.tight_layout()
-        figs[f"orbit_{n}.png"] = _png(fig)
-    lub = [n for n in runs if runs[n][3].joint not in ("perfect", "dry")]
-    if lub:
-        ax = _sheet(fig, (8, 4.4))
-        for n in lub:
-            r = last[n]
-            plots.series_vs_angle(
-                np.radians(_deg(r)),
-                r.element("piston_pin", "h_min") * 1e6,
-                "minimum film thickness $h_{min}$ [µm]",
-                ax=ax,
-                label=runs[n][3].label,
-                color=col[n],
-            )
-        ax.set_yscale("log")
-        from matplotlib.ticker import FuncFormatter
+        plots.journal_orbit(ex, ey, ax=ax, frame="bushing (rod-eye)", color=st[n][0], label="journal centre")
+        ax.set_title(f"journal centre path in the bushing frame, {one}\n{runs[n][3].label}", fontsize=9)
+        style.legend_below(ax, ncol=2, y=-0.13)
+        emit(f"orbit_{n}.png", fig)
+    _film(fig, runs, last, st, one, emit)
+    _joint_force(fig, runs, names, last, st, revs, one, emit)
 
-        ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-        ax.set_xlabel(f"crank angle [deg], {one}")
-        ax.set_title(f"minimum film thickness, {one}", fontsize=10)
-        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2, frameon=False)
-        fig.tight_layout()
-        figs["film_thickness.png"] = _png(fig)
+
+def _film(fig, runs, last, st, one, emit) -> None:
+    lub = [n for n in runs if runs[n][3].joint not in ("perfect", "dry")]
+    if not lub:
+        return
+    ax = _sheet(fig, (8, 5.4))
+    h = {n: last[n].element("piston_pin", "h_min") * 1e6 for n in lub}
+    same = _coincident(h)
+    for k, n in enumerate(lub):
+        label = runs[n][3].label + (f" (within 2 % of {same[n]})" if n in same else "")
+        plots.series_vs_angle(
+            np.radians(_deg(last[n])),
+            h[n],
+            "minimum film thickness $h_{min}$ [µm]",
+            ax=ax,
+            label=label,
+            color=st[n][0],
+            ls="--" if n in same else st[n][1],  # dashed on top of the curve it coincides with
+            lw=1.6 if n in same else 1.1,
+            zorder=2 + k,
+        )
+    ax.set_yscale("log")
+    from matplotlib.ticker import FuncFormatter
+
+    ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax.set_xlabel(f"crank angle [deg], {one}")
+    ax.set_title(f"minimum film thickness, {one}", fontsize=10)
+    _below(fig)
+    emit("film_thickness.png", fig)
+
+
+def _record(res) -> str:
+    """The run's largest sampled |F| on the pin and where, and its recorded peak penetration
+    (between samples included, [T202]) with the elastic force K·δⁿ there (a lower bound of the
+    peak force: the damping term vanishes at the deepest point)."""
+    f = np.hypot(res.element("piston_pin", "Fx"), res.element("piston_pin", "Fy"))
+    i = int(np.argmax(f))
+    a = np.degrees(res.crank_angle() - res.crank_angle()[0])[i]
+    text = f"whole run: largest sample {f[i] / 1e3:.3g} kN at {a:.0f}° (revolution {int(a // 360) + 1})"
+    el = res.system.elements[res.system.element_names.index("piston_pin")]
+    law = getattr(el, "contact", None)
+    pen = post.max_penetration(res, "piston_pin")
+    if pen > 0 and law is not None and hasattr(law, "stiffness"):
+        fk = law.stiffness * pen ** getattr(law, "exponent", 1.0)
+        text += f"; recorded peak penetration {pen * 1e6:.3g} µm → K·δⁿ = {fk / 1e3:.3g} kN"
+    return text
+
+
+def _joint_force(fig, runs, names, last, st, revs, one, emit) -> None:
     imp = [n for n in names if n != "perfect" and "piston_pin" in runs[n][0].journals()]
-    if imp:
-        axs = _sheet(fig, (8, 2.4 * len(imp) + 0.6), len(imp), 1, sharex=True, squeeze=False)
-        for ax, n in zip(axs[:, 0], imp):
-            r = last[n]
-            f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
-            ax.plot(_deg(r), f, color=col[n], lw=0.9)
-            if "perfect" in runs:
-                p = last["perfect"]
-                ax.plot(
-                    _deg(p),
-                    np.hypot(*post.joint_reaction(p, "piston_pin").T),
-                    "k--",
-                    lw=0.8,
-                    label="perfect joint (reaction)",
-                )
-                ax.legend(fontsize=7, loc="upper right")
-            ax.set_title(runs[n][3].label, fontsize=9)
-            ax.set_ylabel("|F| [N]")
-            ax.grid(True, alpha=0.3)
-        axs[-1, 0].set_xlabel(f"crank angle [deg], {one}")
-        axs[-1, 0].set_xlim(0, 360 * min(1.0, revs))
-        plots._angle_ticks(axs[-1, 0], 360 * min(1.0, revs))
-        fig.suptitle("force on the journal (piston pin)", fontsize=10)
-        fig.tight_layout()
-        figs["joint_force.png"] = _png(fig)
-    return figs
+    if not imp:
+        return
+    axs = _sheet(fig, (8, 2.7 * len(imp) + 1.2), len(imp), 1, sharex=True, squeeze=False)
+    step = 0.0
+    for ax, n in zip(axs[:, 0], imp):
+        r = last[n]
+        f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
+        x = _deg(r)
+        ax.plot(x, f, color=st[n][0], lw=0.9, label=n)
+        i = int(np.argmax(f))
+        ax.plot(x[i], f[i], "v", color=st[n][0], ms=6, label="largest sample in the window")
+        step = x[1] - x[0]
+        if "perfect" in runs:
+            p = last["perfect"]
+            reaction = np.hypot(*post.joint_reaction(p, "piston_pin").T)
+            ax.plot(_deg(p), reaction, "k--", lw=0.8, label="perfect joint (reaction)")
+        title = f"{runs[n][3].label}\nthis window: largest sample {f[i] / 1e3:.3g} kN at {x[i]:.0f}°\n"
+        title += _record(runs[n][0])
+        ax.set_title(title, fontsize=8)
+        ax.set_ylabel("|F| [N]")
+        ax.grid(True, alpha=0.3)
+    _angle_axis(axs[-1, 0], revs, one)
+    fig.suptitle(f"force on the journal (piston pin), magnitude, sampled every {step:.2g}°", fontsize=10)
+    _below(fig, ncol=3)
+    emit("joint_force.png", fig)
