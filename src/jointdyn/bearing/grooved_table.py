@@ -7,9 +7,10 @@ import math
 
 import numpy as np
 
+from jointdyn.film import grooved
 from jointdyn.film.coefficients import stability_threshold
 from jointdyn.film.field import peak_of, rupture_of
-from jointdyn.film.grooved import GROOVED_MESH, Grooves, coefficients, equilibrium
+from jointdyn.film.grooved import GROOVED_MESH, Grooves, equilibrium
 from jointdyn.film.jfo import flows
 
 _K = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
@@ -20,14 +21,16 @@ def numeric_coefficients(cavitation: str, ld: float, eps, supply, mesh=GROOVED_M
     the converged film [T247]; ``supply`` a :class:`Grooves` or "line"."""
     rows = []
     for x in eps:
-        c = coefficients(ld, float(x), cavitation, supply, mesh)
+        c = grooved.coefficients(ld, float(x), cavitation, supply, mesh)
         c.update(stability_threshold(c["K"], c["C"]))
         rows.append(c)
     cols = (*_K, "critical_mass", "whirl_ratio")
     return {k: np.array([r[k] for r in rows]) for k in cols}
 
 
-def grooved_table(cavitation: str, ld: float, eps, grooves: Grooves, mesh=GROOVED_MESH) -> dict:
+def grooved_table(
+    cavitation: str, ld: float, eps, grooves: Grooves, mesh=GROOVED_MESH, coefficients: bool = True
+) -> dict:
     """Steady table of the grooved bearing with the load direction fixed (grooves fixed relative
     to the load) per ε [T244–T247]: ``sommerfeld``, ``attitude_deg``, ``friction_variable``
     (Couette shear of the full clearance, as Raimondi–Boyd), ``flow_variable`` Q/(RcNL) of the
@@ -66,5 +69,6 @@ def grooved_table(cavitation: str, ld: float, eps, grooves: Grooves, mesh=GROOVE
             r[f"groove_flow_{k + 1}"] = math.pi * q / (2.0 * ld)
         rows.append(r)
     out = {c: np.array([r[c] for r in rows]) for c in rows[0]}
-    out.update(numeric_coefficients(cavitation, ld, eps, grooves, mesh))
+    if coefficients:
+        out.update(numeric_coefficients(cavitation, ld, eps, grooves, mesh))
     return out
