@@ -93,8 +93,9 @@ def groove_labels(theta: np.ndarray, nz: int, g: Grooves) -> np.ndarray:
 def film_at(ld, e, edot, cavitation, supply, mesh=GROOVED_MESH, warm=None):
     """Solve the film with the journal at e = (e_L, e_P) [c] moving at ė [cω] (load frame) [T246].
 
-    supply   a :class:`Grooves`, or ("line", α) for a feed line (one node row at P = 0) at the
-             mesh angle α [rad] (the plain bearing's supply at its equilibrium maximum film)
+    supply   a :class:`Grooves`, ("line", α) for a feed line (one node row at P = 0) at the
+             mesh angle α [rad] (the plain bearing's supply at its equilibrium maximum film), or
+             None (periodic film without supply)
     Returns (F (2,) film force on the journal in the load frame [μωR⁴/c²], solution, problem,
     fixed mask, groove labels)."""
     check_ld(ld)
@@ -107,14 +108,16 @@ def film_at(ld, e, edot, cavitation, supply, mesh=GROOVED_MESH, warm=None):
     theta0 = supply[1] if isinstance(supply, tuple) else 0.0
     prob = assemble(xi, ld, nt, nz, kappa=0.0, phase=phi + math.pi, theta0=theta0)
     pfix = None
-    if isinstance(supply, tuple):
+    if supply is None:  # periodic film, no supply (not for mass-conserving conditions)
+        labels = np.full(nt * nz, -1)
+    elif isinstance(supply, tuple):
         labels = np.full(nt * nz, -1)
         labels[:nz] = 0  # node row 0 sits on the line
     else:
         labels = groove_labels(prob.theta, nz, supply)
         if supply.feed > 0.0:
             pfix = np.full(nt * nz, supply.feed)
-    fixed = labels >= 0
+    fixed = (labels >= 0) if supply is not None else None
     cond = condition(cavitation)
     s = cond.solve(prob, A, B, fixed, warm, pfix) if pfix is not None else cond.solve(prob, A, B, fixed, warm)
     w = 2.0 * prob.area * s.P
