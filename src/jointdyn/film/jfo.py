@@ -25,12 +25,14 @@ from scipy.sparse import csc_matrix, csr_matrix, diags
 from scipy.sparse.linalg import splu
 
 
-def transport(prob, A: float, B: float) -> csr_matrix:
-    """G with G θ_f = Couette + squeeze outflow of every cell (N×N) for the rates (A, B) [T241]."""
+def transport(prob, A: float, B: float, omega=None) -> csr_matrix:
+    """G with G θ_f = Couette + squeeze outflow of every cell (N×N) for the rates (A, B) [T241]
+    (``omega``: the sliding speed Ω directly, for problems that are not a journal [T250])."""
     xi = prob.xi
-    if not xi > 0.0:
-        raise ValueError(f"eps = {xi!r} [-]: the jfo film needs eps > 0 (Ω = B(2+ξ²)/ξ)")
-    omega = B * (2.0 + xi * xi) / xi
+    if omega is None:
+        if not xi > 0.0:
+            raise ValueError(f"eps = {xi!r} [-]: the jfo film needs eps > 0 (Ω = B(2+ξ²)/ξ)")
+        omega = B * (2.0 + xi * xi) / xi
     nt, nz = prob.shape
     cv = prob.cv
     Hf = prob.Hface
@@ -51,7 +53,7 @@ def transport(prob, A: float, B: float) -> csr_matrix:
     return csr_matrix((vals, (rows, cols)), shape=(N, N))
 
 
-def solve_jfo(prob, A: float, B: float, fixed, pfix=None, cavitated=None, max_iter: int = 200):
+def solve_jfo(prob, A: float, B: float, fixed, pfix=None, cavitated=None, max_iter: int = 200, omega=None):
     """Steady mass-conserving film [T241–T243]: returns (P ≥ 0, θ_f ∈ [0, 1], cavitated set,
     iterations, residual). ``fixed`` (N,) bool: supply cells (θ_f = 1, P = ``pfix`` or 0); at
     least one is needed (a film without a supply has no steady content). RuntimeError if the
@@ -65,7 +67,7 @@ def solve_jfo(prob, A: float, B: float, fixed, pfix=None, cavitated=None, max_it
     fx = np.asarray(fixed, bool)
     pf = np.zeros(N) if pfix is None else np.where(fx, np.asarray(pfix, float), 0.0)
     M = csr_matrix(prob.M)
-    G = transport(prob, A, B)
+    G = transport(prob, A, B, omega)
     Mc, Gc = csc_matrix(M), csc_matrix(G)
     rows = ~fx
     if cavitated is None:  # start: where the flooded (Reynolds-free) film is negative
@@ -93,21 +95,21 @@ def solve_jfo(prob, A: float, B: float, fixed, pfix=None, cavitated=None, max_it
         new = np.where(cav, ~(th > 1.0), P < 0.0) & rows
         if np.array_equal(new, cav):
             P[cav] = 0.0
-            return P, th, cav, it, jfo_residual(prob, A, B, P, th, fx)
+            return P, th, cav, it, jfo_residual(prob, A, B, P, th, fx, omega)
         cav = new
     raise RuntimeError(f"jfo active set did not settle in {max_iter} iterations")
 
 
-def cell_balance(prob, A: float, B: float, P: np.ndarray, fill: np.ndarray) -> np.ndarray:
+def cell_balance(prob, A: float, B: float, P: np.ndarray, fill: np.ndarray, omega=None) -> np.ndarray:
     """Net outflow of every cell (N,) [-] for the field (P, θ_f) [T241]: 0 at solved cells."""
-    return csr_matrix(prob.M) @ P + transport(prob, A, B) @ fill
+    return csr_matrix(prob.M) @ P + transport(prob, A, B, omega) @ fill
 
 
-def jfo_residual(prob, A, B, P, fill, fixed) -> float:
+def jfo_residual(prob, A, B, P, fill, fixed, omega=None) -> float:
     """Convergence measure [T243]: max(cell imbalance / largest Couette flux,
     max|min(P, 1 − θ_f)| / max P) over the non-fixed cells [-]."""
-    r = cell_balance(prob, A, B, P, fill)[~fixed]
-    scale = max(float(np.max(np.abs(transport(prob, A, B).diagonal()))), 1e-300)
+    r = cell_balance(prob, A, B, P, fill, omega)[~fixed]
+    scale = max(float(np.max(np.abs(transport(prob, A, B, omega).diagonal()))), 1e-300)
     comp = np.abs(np.minimum(P, 1.0 - fill))[~fixed]
     return float(max(np.max(np.abs(r)) / scale, np.max(comp) / max(float(np.max(P)), 1e-300)))
 
