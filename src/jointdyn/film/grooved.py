@@ -80,11 +80,13 @@ def axial_grooves(n: int, width_deg: float, feed: float = 0.0) -> Grooves:
 
 def groove_labels(theta: np.ndarray, nz: int, g: Grooves) -> np.ndarray:
     """Groove number of every unknown (N,) (−1 outside the grooves): the cells whose centre lies
-    within half a width of a groove centre [T244]."""
+    in [c − w/2, c + w/2) around a groove centre c (half open, so a width that is a whole number
+    of cells is exactly that many cells) [T244]."""
     lab = np.full(theta.size, -1)
+    tol = 1e-9
     for k, c in enumerate(g.centres):
-        d = np.abs(np.mod(theta - c + math.pi, 2.0 * math.pi) - math.pi)
-        lab[d < 0.5 * g.width + 1e-12] = k
+        d = np.mod(theta - c + math.pi, 2.0 * math.pi) - math.pi
+        lab[(d >= -0.5 * g.width - tol) & (d < 0.5 * g.width - tol)] = k
     if not np.any(lab >= 0):
         raise ValueError(f"groove width {math.degrees(g.width):.6g} [deg]: narrower than one mesh cell")
     return np.repeat(lab, nz)
