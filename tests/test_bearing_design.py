@@ -70,7 +70,7 @@ def test_mesh_convergence_order_of_the_lcp():
 
 def test_table_speed_50_eps():
     """50 values of ε at one L/D in ≤ 2 s warm (measured 0.8 s on the shared 2-core machine), the
-    steady columns (the numerical k/c of [T247] add ≈ 2.8 s, measured in the same conditions)."""
+    steady columns (with the numerical k/c of [T247] the same table took 2.8 s, measured once)."""
     bearing_table("finite", "reynolds", 1.0, [0.5], coefficients=False)
     t = time.perf_counter()
     tab = bearing_table("finite", "reynolds", 1.0, np.linspace(0.02, 0.98, 50), coefficients=False)
