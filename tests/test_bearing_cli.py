@@ -2,11 +2,12 @@
 
 import csv
 import io
+import math
 
 import pytest
 from typer.testing import CliRunner
 
-from jointdyn.bearing.design import COLUMNS, bearing_table
+from jointdyn.bearing.design import COEFFICIENT_COLUMNS, COLUMNS, bearing_table
 from jointdyn.cli import app
 
 runner = CliRunner()
@@ -17,11 +18,32 @@ def test_table_csv_matches_the_function(tmp_path):
     r = runner.invoke(app, ["bearing-table", "--ld", "0.5", "--eps", "0.2,0.6", "--out", str(out)])
     assert r.exit_code == 0, r.output
     rows = list(csv.DictReader(io.StringIO(out.read_text())))
-    assert tuple(rows[0]) == COLUMNS and len(rows) == 2
+    assert tuple(rows[0]) == COLUMNS + COEFFICIENT_COLUMNS and len(rows) == 2
     tab = bearing_table("finite", "reynolds", 0.5, [0.2, 0.6])
     for i, row in enumerate(rows):
-        for c in COLUMNS:  # written with 6 significant digits
+        for c in COLUMNS + COEFFICIENT_COLUMNS:  # written with 6 significant digits
             assert float(row[c]) == pytest.approx(tab[c][i], rel=1e-5)
+
+
+def test_grooved_jfo_table(tmp_path):
+    """--grooves 2 --cavitation jfo: the grooved columns (flow per groove, fill) and k/c; the
+    feed pressure in Pa enters as P_f = p_f c²/(6μωR²) [T245]."""
+    out = tmp_path / "g.csv"
+    args = ["bearing-table", "--ld", "0.5", "--eps", "0.6", "--cavitation", "jfo", "--grooves", "2"]
+    args += ["--feed-pressure", "2e5", "--speed", "50", "--radius", "0.05", "--clearance", "5e-5"]
+    args += ["--viscosity", "0.02", "--out", str(out)]
+    r = runner.invoke(app, args)
+    assert r.exit_code == 0, r.output
+    row = next(csv.DictReader(io.StringIO(out.read_text())))
+    from jointdyn.film.grooved import axial_grooves
+
+    feed = 2e5 * 5e-5**2 / (6 * 0.02 * 2 * math.pi * 50 * 0.05**2)
+    tab = bearing_table("finite", "jfo", 0.5, [0.6], grooves=axial_grooves(2, 18.0, feed))
+    for c in ("sommerfeld", "groove_flow_1", "groove_flow_2", "fill_min", "kxy", "cyy"):
+        assert float(row[c]) == pytest.approx(tab[c][0], rel=1e-5), c
+    assert float(row["groove_flow_1"]) + float(row["groove_flow_2"]) == pytest.approx(
+        float(row["flow_variable"]), rel=1e-5
+    )
 
 
 def test_operating_point_printed():
@@ -38,6 +60,14 @@ def test_operating_point_printed():
         (["--ld", "1", "--eps", "1.5"], "eps = 1.5 [-]: must be in (0, 1)"),
         (["--ld", "0", "--eps", "0.5"], "L/D = 0.0 [-]: must be finite and > 0"),
         (["--ld", "1", "--cavitation", "elrod"], "cavitation = 'elrod': must be one of gumbel, reynolds"),
+        (["--ld", "1", "--grooves", "2", "--groove-width", "190"], "groove width = 190 [deg]"),
+        (["--ld", "1", "--grooves", "2", "--feed-pressure", "-1"], "--feed-pressure -1.0 [Pa]"),
+        (["--ld", "1", "--grooves", "2", "--feed-pressure", "1e5"], "--feed-pressure > 0 needs --speed"),
+        (["--ld", "1", "--feed-pressure", "1e5"], "--feed-pressure needs --grooves"),
+        (
+            ["--ld", "1", "--cavitation", "jfo", "--model", "long"],
+            "closed forms exist for gumbel and reynolds",
+        ),
         (["--ld", "1", "--eps", "x"], "--eps 'x'"),
         (["--ld", "1", "--load", "100"], "--load needs --speed"),
         (

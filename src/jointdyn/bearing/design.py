@@ -38,7 +38,7 @@ MODELS = ("finite", "long", "short")
 #: dynamic-coefficient columns [T107–T108], added to the table where the film has a kernel twin
 COEFFICIENT_COLUMNS = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy", "critical_mass", "whirl_ratio")
 #: (table model, cavitation) -> the film model whose kernel is the same film (coefficients from
-#: its exact Jacobian); Swift–Stieber films have no dynamic kernel yet
+#: its exact Jacobian); the other ``finite`` films get them by central differences [T247]
 COEFFICIENT_MODEL = {
     ("short", "gumbel"): "short",
     ("long", "gumbel"): "alshaer2005",
@@ -148,22 +148,43 @@ def steady_quantities(model: str, cavitation: str, ld: float, eps: float, mesh=D
     return short_steady(eps, ld)
 
 
-def bearing_table(model: str, cavitation: str | None, ld: float, eps_list, mesh=DEFAULT_MESH) -> dict:
-    """Steady design table [T77]: dict column → array (``COLUMNS``), one entry per ε; for the
-    films in ``COEFFICIENT_MODEL`` also the dynamic coefficients and Lund's stability threshold
-    (``COEFFICIENT_COLUMNS``, dimensionless k = Kc/W, c = Ccω/W, M̄ = mcω²/W; [T107–T108]).
+def bearing_table(
+    model: str,
+    cavitation: str | None,
+    ld: float,
+    eps_list,
+    mesh=DEFAULT_MESH,
+    grooves=None,
+    coefficients: bool = True,
+) -> dict:
+    """Steady design table [T77]: dict column → array (``COLUMNS``), one entry per ε; also the
+    dynamic coefficients and Lund's stability threshold (``COEFFICIENT_COLUMNS``, dimensionless
+    k = Kc/W, c = Ccω/W, M̄ = mcω²/W; [T107–T108]): from the exact Jacobian of the kernel twin
+    for the films in ``COEFFICIENT_MODEL``, by central differences for the other ``finite``
+    films [T247] (none for ``long`` with ``reynolds``).
 
     model       "finite" (2-D Reynolds [T70–T72]), "long" (L/D → ∞ [T78]) or "short" (Ocvirk [T79]);
                 a film name of ``FILM_ALIASES`` (``alshaer2005`` = long with gumbel) is accepted
-    cavitation  "reynolds" (Swift–Stieber, as Raimondi–Boyd) or "gumbel" (half-Sommerfeld);
-                None: the aliased film's own, gumbel for short, else reynolds
+    cavitation  "reynolds" (Swift–Stieber, as Raimondi–Boyd), "gumbel" (half-Sommerfeld) or
+                "jfo" (mass-conserving, ``finite`` only [T240–T243]); None: the aliased film's
+                own, gumbel for short, else reynolds
     ld          L/D > 0 [-] (``long`` uses it only in the ``ld`` column)
     eps_list    eccentricity ratios, each in (0, 1) [-]
     mesh        finite-volume mesh of ``finite`` (cells around, cells on the half length) [-]
+    grooves     None (supply line at the maximum film) or a :class:`~jointdyn.film.grooved.Grooves`
+                (``finite`` only; table from :mod:`.grooved_table` [T244–T247])
+    coefficients  False: the steady columns only (the numerical k/c of [T247] cost ≈ 10 film
+                solves per ε)
     """
     model, cavitation = _check_model(model, cavitation)
     check_ld(float(ld))
     e = _check_eps_list(eps_list)
+    if grooves is not None:
+        if model != "finite":
+            raise ValueError(f"grooves with model = {model!r}: supply grooves need the 'finite' film")
+        from jointdyn.bearing.grooved_table import grooved_table
+
+        return grooved_table(cavitation, float(ld), e, grooves, coefficients=coefficients)
     cav = None
     rows: list = [None] * e.size
     for k in np.argsort(e):  # ascending ε: the cavitated set of the previous ε is the warm start
@@ -172,11 +193,17 @@ def bearing_table(model: str, cavitation: str | None, ld: float, eps_list, mesh=
         rows[k] = _row(float(e[k]), float(ld), d)
     out = {c: np.array([r[c] for r in rows]) for c in COLUMNS}
     twin = COEFFICIENT_MODEL.get((model, cavitation))
-    if twin is not None:
+    if not coefficients:
+        pass
+    elif twin is not None:
         from jointdyn.film.coefficients import dynamic_coefficients
 
         coef = [dynamic_coefficients(twin, float(ld), float(x)) for x in e]
         out.update({c: np.array([d[c] for d in coef]) for c in COEFFICIENT_COLUMNS})
+    elif model == "finite":  # the supply line stays where the equilibrium's maximum film is [T247]
+        from jointdyn.bearing.grooved_table import numeric_coefficients
+
+        out.update(numeric_coefficients(cavitation, float(ld), e, "line", (max(180, mesh[0]), mesh[1])))
     return out
 
 

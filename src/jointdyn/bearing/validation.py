@@ -42,9 +42,9 @@ def compare(published: dict, cavitation: str = "reynolds") -> dict:
     res: dict = {}
     for ld, pub in published.items():
         if math.isinf(ld):
-            tab = bearing_table("long", cavitation, 1.0, pub["eps"])
+            tab = bearing_table("long", cavitation, 1.0, pub["eps"], coefficients=False)
         else:
-            tab = bearing_table("finite", cavitation, ld, pub["eps"])
+            tab = bearing_table("finite", cavitation, ld, pub["eps"], coefficients=False)
         res[ld] = {}
         for c in COMPARED:
             got, ref = tab[c], pub[c]
@@ -88,7 +88,9 @@ def compare_butenschoen(published: dict, cavitation: str = "reynolds", mesh=None
     res: dict = {}
     for ld, pub in published.items():
         kw = {} if mesh is None else {"mesh": mesh}
-        got = butenschoen_quantities(bearing_table("finite", cavitation, ld, pub["eps"], **kw))
+        got = butenschoen_quantities(
+            bearing_table("finite", cavitation, ld, pub["eps"], coefficients=False, **kw)
+        )
         res[ld] = {}
         for c, half in (("So", 5e-5), ("beta_deg", 5e-4), ("Q", 5e-5)):
             ref = pub[c]
@@ -138,12 +140,12 @@ def plot_validation(published_path: str | Path, out_png: str | Path, butenschoen
         col = f"C{k}"
         lab = "L/D = ∞" if math.isinf(ld) else f"L/D = {ld:g}"
         model, ld_arg = ("long", 1.0) if math.isinf(ld) else ("finite", ld)
-        tab = bearing_table(model, "reynolds", ld_arg, eps)
+        tab = bearing_table(model, "reynolds", ld_arg, eps, coefficients=False)
         a1.semilogy(tab["eps"], tab["sommerfeld"], color=col, label=lab + " (computed)")
         a1.semilogy(pub[ld]["eps"], pub[ld]["sommerfeld"], "o", mfc="none", color=col)
         a2.plot(tab["eps"], tab["attitude_deg"], color=col, label=lab)
         a2.plot(pub[ld]["eps"], pub[ld]["attitude_deg"], "o", mfc="none", color=col)
-        S_here = bearing_table(model, "reynolds", ld_arg, pub[ld]["eps"])["sommerfeld"]
+        S_here = bearing_table(model, "reynolds", ld_arg, pub[ld]["eps"], coefficients=False)["sommerfeld"]
         a3.plot(
             pub[ld]["eps"], 100 * (pub[ld]["sommerfeld"] / S_here - 1), "o-", mfc="none", color=col, lw=0.8
         )
@@ -152,7 +154,7 @@ def plot_validation(published_path: str | Path, out_png: str | Path, butenschoen
             S_b = 1.0 / (2.0 * math.pi * b["So"])
             a1.semilogy(b["eps"], S_b, "+", ms=7, color=col)
             a2.plot(b["eps"], b["beta_deg"], "+", ms=7, color=col)
-            S_here = bearing_table("finite", "reynolds", ld, b["eps"])["sommerfeld"]
+            S_here = bearing_table("finite", "reynolds", ld, b["eps"], coefficients=False)["sommerfeld"]
             a3.plot(b["eps"], 100 * (S_b / S_here - 1), "+--", ms=7, color=col, lw=0.8)
     a1.set(
         xlabel="eccentricity ratio ε [-]",

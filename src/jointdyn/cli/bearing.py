@@ -30,10 +30,32 @@ def _floats(text: str, name: str) -> list[float]:
         ) from None
 
 
+def _grooves(n, width_deg, feed_pa, extra, load):
+    """The :class:`Grooves` of the options (None without --grooves) [T244–T245]."""
+    if n is None:
+        if feed_pa != 0.0:
+            raise ValueError("--feed-pressure needs --grooves")
+        return None
+    from jointdyn.film.grooved import axial_grooves
+
+    if load is not None:
+        raise ValueError("--load with --grooves: the grooved operating point is not available yet")
+    if not (math.isfinite(feed_pa) and feed_pa >= 0.0):
+        raise ValueError(f"--feed-pressure {feed_pa!r} [Pa]: must be finite and >= 0 (gauge)")
+    feed = 0.0
+    if feed_pa > 0.0:
+        if any(v is None for v in extra):
+            raise ValueError("--feed-pressure > 0 needs --speed, --radius, --clearance and --viscosity (SI)")
+        speed, radius, clearance, viscosity = extra
+        omega = 2.0 * math.pi * speed
+        feed = feed_pa * clearance**2 / (6.0 * viscosity * omega * radius**2)  # P_f [T245]
+    return axial_grooves(n, width_deg, feed)
+
+
 def bearing_table_cmd(
     model: str = typer.Option("finite", help="finite | long | short | alshaer2005 (film name: long, gumbel)"),
     cavitation: str = typer.Option(
-        None, help="reynolds (Swift–Stieber, default) | gumbel (default of short and alshaer2005)"
+        None, help="reynolds (Swift–Stieber, default) | gumbel (default of short and alshaer2005) | jfo"
     ),
     ld: float = typer.Option(..., help="length/diameter ratio L/D (> 0)"),
     eps: str = typer.Option(
@@ -45,6 +67,13 @@ def bearing_table_cmd(
     radius: float = typer.Option(None, help="journal radius R in m"),
     clearance: float = typer.Option(None, help="radial clearance c in m"),
     viscosity: float = typer.Option(None, help="dynamic viscosity μ in Pa·s"),
+    grooves: int = typer.Option(
+        None, help="axial supply grooves, evenly spaced from +90° off the load line (2: at ±90°)"
+    ),
+    groove_width: float = typer.Option(18.0, help="angular width of each groove in degrees"),
+    feed_pressure: float = typer.Option(
+        0.0, help="groove supply pressure in Pa (gauge; > 0 needs --speed --radius --clearance --viscosity)"
+    ),
 ):
     """Steady bearing design table (Raimondi–Boyd variables) per ε; with --load/--speed/--radius/
     --clearance/--viscosity also the operating point (ε, attitude, h_min, power loss, peak pressure)."""
@@ -56,10 +85,11 @@ def bearing_table_cmd(
     console = Console(stderr=True)
     try:
         eps_list = _floats(eps, "eps")
-        tab = bearing_table(model, cavitation, ld, eps_list)
-        op = None
         extra = (speed, radius, clearance, viscosity)
-        if load is not None or any(v is not None for v in extra):
+        supply = _grooves(grooves, groove_width, feed_pressure, extra, load)
+        tab = bearing_table(model, cavitation, ld, eps_list, grooves=supply)
+        op = None
+        if supply is None and (load is not None or any(v is not None for v in extra)):
             if load is None or any(v is None for v in extra):
                 raise ValueError("--load needs --speed, --radius, --clearance and --viscosity (all SI)")
             length = ld * 2.0 * radius

@@ -3,8 +3,10 @@
 A condition turns the discretised problem (:class:`~jointdyn.film.fv.FVProblem`) and the rates
 (A, B) into a pressure field P ≥ 0. Everything downstream — the design table, the operating
 point, the pressure field, the dynamic ``finite`` table and hence the bearing element — asks the
-registry by name, so a new condition (e.g. a mass-conserving JFO/Elrod one) is one class and one
-:func:`register` call; see docs/how-to-add-a-model.md. This module imports no solver at load time.
+registry by name, so a new condition is one class and one :func:`register` call; see
+docs/how-to-add-a-model.md. ``jfo`` is the mass-conserving one [T240–T243]. A condition may take
+``pfix`` (supply pressures on the ``fixed`` nodes, a lubricant feed [T245]); one without it serves
+only ambient supplies. This module imports no solver at load time.
 """
 
 from __future__ import annotations
@@ -44,10 +46,11 @@ class Gumbel:
     rupture_exponent: ClassVar[float] = 1.0
     mass_conserving: ClassVar[bool] = False
 
-    def solve(self, prob, A: float, B: float, fixed=None, warm=None) -> Solution:
+    def solve(self, prob, A: float, B: float, fixed=None, warm=None, pfix=None) -> Solution:
         from jointdyn.film.lcp import full_film
 
-        P = np.maximum(full_film(prob.M, A * prob.bA + B * prob.bB, fixed), 0.0)
+        b, pf = _dirichlet(prob, A * prob.bA + B * prob.bB, fixed, pfix)
+        P = np.maximum(full_film(prob.M, b, fixed) + pf, 0.0)
         return Solution(P, None, 1, 0.0)
 
 
@@ -60,12 +63,39 @@ class SwiftStieber:
     rupture_exponent: ClassVar[float] = 2.0
     mass_conserving: ClassVar[bool] = False
 
-    def solve(self, prob, A: float, B: float, fixed=None, warm=None) -> Solution:
+    def solve(self, prob, A: float, B: float, fixed=None, warm=None, pfix=None) -> Solution:
         from jointdyn.film.lcp import residual, solve_lcp_banded
 
-        b = A * prob.bA + B * prob.bB
+        b, pf = _dirichlet(prob, A * prob.bA + B * prob.bB, fixed, pfix)
         P, cav, it = solve_lcp_banded(prob, b, fixed, warm)
-        return Solution(P, cav, it, residual(prob.M, b, P, fixed))
+        return Solution(P + pf, cav, it, residual(prob.M, b, P, fixed))
+
+
+class JFO:
+    """Mass-conserving (Jakobsson–Floberg–Olsson, Elrod–Adams) film: P ≥ 0, fill θ_f ≤ 1,
+    P(1 − θ_f) = 0, every cell's balance with the Couette flux carrying the content, by a
+    primal–dual active set on the cavitated set [T240–T243]; state = the cavitated set, fill =
+    θ_f. Needs a supply (``fixed`` nodes: feed line or grooves, flooded)."""
+
+    name: ClassVar[str] = "jfo"
+    #: the rupture boundary of the mass-conserving film has ∂P/∂n = 0, as Swift–Stieber's [T240]
+    rupture_exponent: ClassVar[float] = 2.0
+    mass_conserving: ClassVar[bool] = True
+
+    def solve(self, prob, A: float, B: float, fixed=None, warm=None, pfix=None) -> Solution:
+        from jointdyn.film.jfo import solve_jfo
+
+        P, fill, cav, it, res = solve_jfo(prob, A, B, fixed, pfix, warm)
+        return Solution(P, cav, it, res, fill)
+
+
+def _dirichlet(prob, b: np.ndarray, fixed, pfix):
+    """(b − M·P_D, P_D): the right-hand side for the free nodes with P = pfix held on the fixed
+    nodes (a supply pressure [T245]); P_D = 0 without ``pfix``."""
+    if pfix is None or fixed is None:
+        return b, np.zeros(b.size)
+    pd = np.where(np.asarray(fixed, bool), np.asarray(pfix, float), 0.0)
+    return b - prob.M @ pd, pd
 
 
 #: name -> condition instance (read through :func:`condition` / :func:`names`)
@@ -94,6 +124,7 @@ def register(cond):
 
 register(Gumbel())
 register(SwiftStieber())
+register(JFO())
 
 
 def names() -> tuple[str, ...]:

@@ -83,7 +83,7 @@ def _weights(f: Film):
 def forces(f: Film) -> tuple[float, float]:
     """(F_r, F_t) on the journal in units of (6μR⁴/c²)·(rate scale): R²∫∫P(cos θ, sin θ) [T74]."""
     w = _weights(f) * f.P
-    th = f.prob.theta
+    th = f.prob.film_theta
     return float(np.sum(w.sum(axis=1) * np.cos(th))), float(np.sum(w.sum(axis=1) * np.sin(th)))
 
 

@@ -39,6 +39,9 @@ class FVProblem:
     band     M in symmetric upper band storage in the zig-zag θ order (N, u+1), u = 2·nz:
              band[q, d] = M[perm[q], perm[q+d]] (for :func:`~jointdyn.film.lcp.solve_lcp_banded`)
     perm     unknown order of ``band``: position q holds unknown perm[q] (N,) [-]
+    phase    angle of the maximum film on the mesh [rad]: H = 1 + ξ cos(θ − phase) (0: the mesh
+             angles are the film angles; a mesh fixed in the bearing has phase = γ + π) [T240]
+    Hface    film thickness at the θ faces i+1/2 (nt,) [-] (the Couette fluxes of [T241])
     """
 
     xi: float
@@ -53,6 +56,13 @@ class FVProblem:
     area: np.ndarray
     band: np.ndarray
     perm: np.ndarray
+    phase: float = 0.0
+    Hface: np.ndarray | None = None
+
+    @property
+    def film_theta(self) -> np.ndarray:
+        """Node angles from the maximum film, θ_i − phase in [0, 2π) (nt,) [rad]."""
+        return np.mod(self.theta - self.phase, 2.0 * np.pi)
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -84,7 +94,13 @@ def check_ld(lam: float) -> None:
 
 
 def assemble(
-    xi: float, lam: float, nt: int = DEFAULT_MESH[0], nz: int = DEFAULT_MESH[1], kappa=None
+    xi: float,
+    lam: float,
+    nt: int = DEFAULT_MESH[0],
+    nz: int = DEFAULT_MESH[1],
+    kappa=None,
+    phase: float = 0.0,
+    theta0: float = 0.0,
 ) -> FVProblem:
     """Finite-volume discretisation [T71] of the nondimensional Reynolds equation [T70].
 
@@ -92,7 +108,9 @@ def assemble(
     lam    L/D > 0 [-]
     nt     cells around the circumference [-]
     nz     cells on the half length [-]
-    kappa  θ-clustering parameter (default 0.85ξ) [-]
+    kappa  θ-clustering parameter (default 0.85ξ; 0 = uniform) [-]
+    phase  mesh angle of the maximum film [rad]: H = 1 + ξ cos(θ − phase) [T240]
+    theta0 mesh angle of node 0 [rad] (uniform meshes fixed in the bearing) [T240]
     """
     check_xi(xi)
     check_ld(lam)
@@ -103,8 +121,11 @@ def assemble(
     s = np.arange(nt) * ds
     th, dth = theta_map(s, kappa)
     thf, dthf = theta_map(s + 0.5 * ds, kappa)  # faces i+1/2
-    H3 = (1.0 + xi * np.cos(th)) ** 3
-    af = (1.0 + xi * np.cos(thf)) ** 3 / dthf  # H³/θ' at the faces
+    th = np.mod(th + theta0, 2.0 * np.pi)
+    thf = thf + theta0
+    Hf = 1.0 + xi * np.cos(thf - phase)
+    H3 = (1.0 + xi * np.cos(th - phase)) ** 3
+    af = Hf**3 / dthf  # H³/θ' at the faces
     z = zeta_nodes(lam, nz)
     dzf = np.diff(z)
     cv = np.empty(nz)
@@ -133,10 +154,12 @@ def assemble(
     N = nt * nz
     M = csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(N, N))
     area = (ds * dth)[:, None] * cv[None, :]
-    bA = -(2.0 * np.cos(th))[:, None] * area  # M P = −∫source
-    bB = ((2.0 + xi * xi) * np.sin(th))[:, None] * area
+    bA = -(2.0 * np.cos(th - phase))[:, None] * area  # M P = −∫source
+    bB = ((2.0 + xi * xi) * np.sin(th - phase))[:, None] * area
     band, perm = band_form(M, nt, nz)
-    return FVProblem(xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel(), band, perm)
+    return FVProblem(
+        xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel(), band, perm, float(phase), Hf
+    )
 
 
 def band_form(M: csr_matrix, nt: int, nz: int) -> tuple[np.ndarray, np.ndarray]:

@@ -94,10 +94,15 @@ class Finite:
     PARAMS: ClassVar[tuple[str, ...]] = ()
 
     def __post_init__(self):
-        from jointdyn.film.cavitation import names
+        from jointdyn.film.cavitation import condition, names
 
         if self.cavitation not in names():
             raise ValueError(f"Finite.cavitation = {self.cavitation!r}: unknown; valid: {list(names())}")
+        if condition(self.cavitation).mass_conserving:
+            raise ValueError(
+                f"Finite.cavitation = {self.cavitation!r}: a mass-conserving film needs its content "
+                "history, which the dynamic finite table has not; use it in bearing-table (steady)"
+            )
 
     def table(self, length: float, journal_radius: float) -> np.ndarray:
         """The force table of a bearing of this length and journal radius [m, m]."""

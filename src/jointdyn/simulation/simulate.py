@@ -11,7 +11,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from jointdyn.core import interrupts
-from jointdyn.errors import Interrupted, SimulationError
+from jointdyn.errors import Interrupted, PhysicsWarning, SimulationError
 from jointdyn.forces.elements import FILM_BREAKDOWN
 from jointdyn.integrators import SOLVERS
 from jointdyn.integrators.accuracy import check_force_resolution
@@ -370,4 +370,8 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
     bad = ~np.isfinite(res.y).all(axis=1)
     if bad.any():
         raise SimulationError(f"non-finite state at t = {ts[bad][0]:.9g} s", ts[bad][0], res)
+    from jointdyn.simulation.ranges import film_range_exits, range_message
+
+    for d in film_range_exits(res):  # [T249]
+        warnings.warn(range_message(d), PhysicsWarning, stacklevel=3)
     return res

@@ -89,6 +89,9 @@ def summary(res, status: str = "complete", aliases: dict[str, str] | None = None
     if len(res.t):
         out["metrics"] = metrics(res, aliases)
         out["metric_units"] = metric_units(res.system, aliases)
+    from jointdyn.simulation.ranges import film_range_exits
+
+    out["film_range"] = film_range_exits(res)  # [T249]: [] when every film stayed in its table
     return out
 
 
