@@ -195,6 +195,13 @@ def film_forces(
             raise ValueError(
                 f"{name} [{_UNITS[name]}] must be > 0; got {arr[name].flat[bad[0]]!r} at index {bad[0]}"
             )
+    bad = np.flatnonzero(arr["clearance"] >= arr["radius"])
+    if bad.size:
+        i = bad[0]
+        raise ValueError(
+            f"clearance [m] must be < radius = {arr['radius'].flat[i]!r} (c < R: a journal bearing); "
+            f"got {arr['clearance'].flat[i]!r} at index {i}"
+        )
     x = arr["xi"]
     bad = np.flatnonzero((x < 0.0) | (x >= 1.0))
     if bad.size:
@@ -226,12 +233,15 @@ def film_forces(
             tab,
         )
     g = arr["gamma"]
-    return {
-        "Fr": fr,
-        "Ft": ft,
-        "Fx": fr * np.cos(g) - ft * np.sin(g),
-        "Fy": fr * np.sin(g) + ft * np.cos(g),
-    }  # [T27]
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is found and refused below
+        F = {"Fr": fr, "Ft": ft, "Fx": fr * np.cos(g) - ft * np.sin(g), "Fy": fr * np.sin(g) + ft * np.cos(g)}
+    bad = np.flatnonzero(~np.all([np.isfinite(v) for v in F.values()], axis=0))
+    if bad.size:  # overflow of huge rates or properties: refused, never written [T284]
+        raise ValueError(
+            f"film force not finite (overflow: the state's rates or properties are too large for a "
+            f"float) at index {bad[0]}"
+        )
+    return F  # [T27]
 
 
 # -- optional capability: exact Jacobians [T90–T97] ------------------------------------------------
