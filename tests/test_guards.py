@@ -55,7 +55,8 @@ def test_asperity_height_must_be_a_roughness_not_the_gap():
 
 
 def test_film_force_refuses_clearance_above_radius_and_overflow(tmp_path):
-    """film-force: c = 0.02 m > R = 0.01 m is refused naming the clearance; ξ̇ = ω = 1e300 gave
+    """film-force: c = 0.02 m > R = 0.01 m in a state table is refused naming the clearance
+    (film_forces itself also serves dimensionless use, R = c = 1); ξ̇ = ω = 1e300 gave
     -inf,inf,nan,nan with exit 0 — now one line, exit 2, no output file."""
     base = dict(
         xi=0.5,
@@ -70,12 +71,15 @@ def test_film_force_refuses_clearance_above_radius_and_overflow(tmp_path):
         clearance=1e-4,
     )
     assert np.isfinite(film_forces("alshaer2005", **base)["Fx"])
-    with pytest.raises(ValueError, match=r"clearance \[m\] must be < radius"):
-        film_forces("alshaer2005", **base | {"clearance": 0.02})
     big = base | {"xi": 0.9, "viscosity": 1e3, "clearance": 1e-6, "xi_dot": 1e300, "omega_journal": 1e300}
     with pytest.raises(ValueError, match="not finite"):
         film_forces("alshaer2005", **big)
     csv = tmp_path / "s.csv"
+    csv.write_text(
+        ",".join(base) + "\n" + ",".join(str(v) for v in (base | {"clearance": 0.02}).values()) + "\n"
+    )
+    r = runner.invoke(app, ["film-force", str(csv)])
+    assert r.exit_code == 2 and "row 1: clearance = 0.02 [m] must be < radius = 0.01 (c < R)" in one_line(r)
     csv.write_text(",".join(base) + "\n" + ",".join(str(v) for v in big.values()) + "\n")
     out = tmp_path / "f.csv"
     r = runner.invoke(app, ["film-force", str(csv), "--out", str(out)])
@@ -250,3 +254,9 @@ def test_a_million_case_sweep_is_refused_before_work(tmp_path):
     with pytest.raises(ValueError, match="1000000 cases; at most 100000"):
         run_sweep(spec, tmp_path / "s")
     assert not (tmp_path / "s").exists()
+
+
+def test_animate_frames_has_a_stated_limit(tmp_path):
+    """animate --frames 1e8 (as an integer): refused before the file is read, naming the limit."""
+    r = runner.invoke(app, ["animate", str(tmp_path / "missing"), "--frames", "100000000"])
+    assert r.exit_code == 2 and "--frames = 100000000 [-]: must be 2 … 5000" in one_line(r)

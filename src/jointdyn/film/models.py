@@ -195,13 +195,6 @@ def film_forces(
             raise ValueError(
                 f"{name} [{_UNITS[name]}] must be > 0; got {arr[name].flat[bad[0]]!r} at index {bad[0]}"
             )
-    bad = np.flatnonzero(arr["clearance"] >= arr["radius"])
-    if bad.size:
-        i = bad[0]
-        raise ValueError(
-            f"clearance [m] must be < radius = {arr['radius'].flat[i]!r} (c < R: a journal bearing); "
-            f"got {arr['clearance'].flat[i]!r} at index {i}"
-        )
     x = arr["xi"]
     bad = np.flatnonzero((x < 0.0) | (x >= 1.0))
     if bad.size:
