@@ -226,7 +226,7 @@ def test_dead_scheduler_fails_fast_and_touches_nothing(tmp_path):
         capture_output=True,
         text=True,
     )
-    # 8 s connect timeout + interpreter start-up (the brief's "within ~10 s" of trying)
+    # 10 s connect timeout (io/cluster.py) + interpreter start-up (the brief's "within ~10 s" of trying)
     assert r.returncode == 2 and time.time() - t0 < 25, r.stderr
     one_line_error(r.stderr)
     assert "cannot connect" in r.stderr

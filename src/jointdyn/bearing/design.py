@@ -243,6 +243,8 @@ def equilibrium(
             raise ValueError(f"{name} = {v!r} [{unit}]: must be finite and > 0")
     model, cavitation = _check_model(model, cavitation)
     ld = length / (2.0 * radius)
+    if clearance >= radius:  # before the load is judged: c ≥ R is no journal bearing [T284]
+        raise ValueError(f"clearance = {clearance!r} [m]: must be < radius = {radius!r} (c < R)")
     S_given = (radius / clearance) ** 2 * viscosity * speed / (load / (2.0 * radius * length))
 
     def S_of(eps):

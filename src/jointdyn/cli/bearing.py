@@ -13,6 +13,8 @@ import typer
 
 from jointdyn.cli.common import app
 
+MAX_VALUES = 10_000  # eccentricity ratios in one table [-]
+
 
 def _floats(text: str, name: str) -> list[float]:
     """Comma-separated numbers, or a range ``first:last:count`` (count values, ends included)."""
@@ -22,8 +24,12 @@ def _floats(text: str, name: str) -> list[float]:
             k = int(n)
             if k < 1:
                 raise ValueError
+            if k > MAX_VALUES:  # each value is a film solve: refuse before any work [T285]
+                raise OverflowError
             return [float(a) + (float(b) - float(a)) * i / max(k - 1, 1) for i in range(k)]
         return [float(x) for x in text.split(",") if x.strip()]
+    except OverflowError:
+        raise ValueError(f"--{name} {text!r}: at most {MAX_VALUES} values (each is a film solve)") from None
     except ValueError:
         raise ValueError(
             f"--{name} {text!r}: give numbers separated by commas or a range first:last:count"

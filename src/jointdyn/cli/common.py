@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import sys
 import time
 import warnings
 from pathlib import Path
@@ -37,6 +38,9 @@ class _Command(typer.Typer):
             code = 0
         except SystemExit as e:
             code = e.code
+        except KeyboardInterrupt:  # before a command's own handler (argument parsing, imports)
+            print("interrupted by SIGINT", file=sys.stderr)
+            code = 130
         _exit(code)
 
 

@@ -266,7 +266,7 @@ def list_registries(
     from jointdyn.forces.elements import FORCE_ELEMENTS
     from jointdyn.forces.friction_laws import FRICTION_LAWS
     from jointdyn.integrators import SOLVERS
-    from jointdyn.models import slider_crank_args as options
+    from jointdyn.models.catalog import SHIPPED
 
     regs = {
         "constraints": {k: _doc(v) for k, v in CONSTRAINTS.items()},
@@ -275,7 +275,7 @@ def list_registries(
         "contact laws": {k: _doc(v) for k, v in CONTACT_LAWS.items()},
         "friction laws": {k: _doc(v) for k, v in FRICTION_LAWS.items()},
         "solvers": {k: d for k, (_, _, d) in SOLVERS.items()},
-        "models": {"slider-crank": "joints: " + ", ".join(options.joints())},
+        "models": {k: f"{m.variant_arg}: " + ", ".join(m.variants()) for k, m in SHIPPED.items()},
         "film-force columns": {c: f"[{u}]" for c, u in units().items() if c in columns()},
     }
     if as_json:

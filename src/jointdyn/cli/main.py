@@ -231,6 +231,12 @@ def sweep(
         None, help="Dask scheduler address tcp://HOST:PORT (default: local processes)"
     ),
     workers: int = typer.Option(None, help="local worker processes [-] (default: all cores)"),
+    case_timeout: float = typer.Option(
+        None, help="a case whose integration runs longer is recorded as failed [s] (default: no limit)"
+    ),
+    worker_timeout: float = typer.Option(
+        60.0, help="Dask: wait this long for a worker, or for a silent scheduler, then stop [s]"
+    ),
 ):
     """Run a parameter study; writes DIR/cases/*.json per case, DIR/sweep.nc and DIR/manifest.json."""
     from jointdyn.studies.sweep import load_sweep, run_sweep
@@ -252,6 +258,9 @@ def sweep(
                 workers=workers,
                 overwrite=overwrite,
                 progress=lambda done, total: prog.update(task, completed=done),
+                case_timeout=case_timeout,
+                worker_timeout=worker_timeout,
+                notice=lambda line: typer.echo(line, err=True),
             )
     failed = int((ds["error"] != "").sum())
     console.print(f"wrote {escape(str(out))}/sweep.nc ({n} cases, {failed} failed)")

@@ -15,6 +15,7 @@ every offset behind it without an edit anywhere else.
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Iterable, Mapping
 
 import numpy as np
@@ -99,8 +100,9 @@ def check_codes(registry: Mapping[str, type], family: str) -> None:
 def check_finite(owner: str, name: str, v, unit: str, rule: str, ok) -> None:
     """Raise :class:`~jointdyn.core.checks.FieldError` (a ``ValueError``: "owner.name = v [unit]: must
     be rule") unless v is a finite number
-    satisfying ``ok(v)``."""
-    if not (isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and ok(v)):
+    satisfying ``ok(v)``; any real type counts (numpy ``float32``, ``int64`` …: ``numbers.Real``)."""
+    real = isinstance(v, numbers.Real) and not isinstance(v, bool)
+    if not (real and math.isfinite(float(v)) and ok(float(v))):
         from jointdyn.core.checks import FieldError  # a ValueError carrying field/unit/rule (no text parsing)
 
         raise FieldError(name, v, unit, rule, owner)

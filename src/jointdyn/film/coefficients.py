@@ -10,6 +10,7 @@ dimensionless and depend on the film model, ε and (``short``, ``finite``) L/D o
 from __future__ import annotations
 
 import math
+import numbers
 
 import numpy as np
 
@@ -32,9 +33,9 @@ columns for ``bearing-table``"""
 def _check(model, ld, eps):
     if not isinstance(model, str) or model not in FILM_MODELS:
         raise ValueError(f"model = {model!r}: unknown film model; valid: {sorted(FILM_MODELS)}")
-    if not (isinstance(ld, (int, float)) and math.isfinite(ld) and ld > 0):
+    if not (isinstance(ld, numbers.Real) and math.isfinite(ld) and ld > 0):
         raise ValueError(f"ld = {ld!r} [-]: L/D must be finite and > 0")
-    if not (isinstance(eps, (int, float)) and math.isfinite(eps) and 0.0 < eps < 1.0):
+    if not (isinstance(eps, numbers.Real) and math.isfinite(eps) and 0.0 < eps < 1.0):
         raise ValueError(f"eps = {eps!r} [-]: eccentricity ratio must be in (0, 1) (W = 0 at ε = 0)")
 
 
@@ -74,6 +75,7 @@ def equilibrium(model: str, ld: float, eps: float) -> dict:
     line −ŷ to the line of centres, in the direction of rotation), ``gamma`` = φ − π/2 [rad]
     (direction of e), ``sommerfeld`` S = μ N L D (R/c)²/W with N = ω/2π [-]."""
     _check(model, ld, eps)
+    ld, eps = float(ld), float(eps)  # numpy scalars compute in float64 [T288]
     F, _, _ = _film_cartesian(model, ld, eps)
     W = math.hypot(F[0], F[1])
     phi = math.atan2(F[1], -F[0])
@@ -89,6 +91,7 @@ def dynamic_coefficients(model: str, ld: float, eps: float) -> dict:
     in degrees), ``sommerfeld`` [-], ``critical_mass`` (Lund's
     M̄ = m c ω²/W at the threshold, inf if stable for any mass) and ``whirl_ratio`` ν/ω [-]."""
     _check(model, ld, eps)
+    ld, eps = float(ld), float(eps)  # numpy scalars compute in float64 [T288]
     F, dF_de, dF_ded = _film_cartesian(model, ld, eps)
     eq = equilibrium(model, ld, eps)
     W = eq["load"]

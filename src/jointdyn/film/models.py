@@ -231,12 +231,15 @@ def film_forces(
             tab,
         )
     g = arr["gamma"]
-    return {
-        "Fr": fr,
-        "Ft": ft,
-        "Fx": fr * np.cos(g) - ft * np.sin(g),
-        "Fy": fr * np.sin(g) + ft * np.cos(g),
-    }  # [T27]
+    with np.errstate(over="ignore", invalid="ignore"):  # overflow is found and refused below
+        F = {"Fr": fr, "Ft": ft, "Fx": fr * np.cos(g) - ft * np.sin(g), "Fy": fr * np.sin(g) + ft * np.cos(g)}
+    bad = np.flatnonzero(~np.all([np.isfinite(v) for v in F.values()], axis=0))
+    if bad.size:  # overflow of huge rates or properties: refused, never written [T284]
+        raise ValueError(
+            f"film force not finite (overflow: the state's rates or properties are too large for a "
+            f"float) at index {bad[0]}"
+        )
+    return F  # [T27]
 
 
 # -- optional capability: exact Jacobians [T90–T97] ------------------------------------------------

@@ -73,6 +73,12 @@ def _parse(rows, head, start: int, src) -> np.ndarray:
 
 
 def _forces(model, data: np.ndarray, start: int, src) -> dict:
+    c, r = data[:, columns().index("clearance")], data[:, columns().index("radius")]
+    bad = np.flatnonzero(c >= r)  # a state table is dimensional: c < R [T284]
+    if bad.size:
+        i = bad[0]
+        ci, ri = float(c[i]), float(r[i])
+        raise ValueError(f"{src}: row {start + i}: clearance = {ci!r} [m] must be < radius = {ri!r} (c < R)")
     try:
         return film_forces(model, *data.T)
     except ValueError:

@@ -70,6 +70,7 @@ OUTPUTS = {
     "contact_force": "N",
     "friction_torque": "N·m",
     "power_loss": "W",
+    "power_exchanged": "W",
 }
 MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
 
@@ -79,7 +80,10 @@ CONTACT_P0, CONTACT_P1 = REAL.block("contact").start, REAL.block("contact").stop
 FRICTION_P0, FRICTION_P1 = REAL.block("friction").start, REAL.block("friction").stop
 FILM, CONTACT, FRICTION, TABLE, SHEAR = INT.slots("film", "contact", "friction", "table", "shear")
 IN_CONTACT, ONSET_VEL, IMPACTS, MAX_PEN = Layout(MEMORY).slots(*MEMORY)
-O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN, O_TORQUE, O_LOSS = Layout(OUTPUTS).slots(*OUTPUTS)
+O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN, O_TORQUE, O_LOSS, O_EXCH = Layout(OUTPUTS).slots(
+    *OUTPUTS
+)
+ASPERITY_MAX = 0.5  # asperity height ≤ this fraction of the clearance [T283]
 XI_GUARD = 1.0 - 1e-9  # film evaluated at most here when no contact law catches ξ → 1
 
 
@@ -249,7 +253,7 @@ class JournalBearing:
     """apply the film's viscous shear torques to journal and bushing [T75] (False: pressure
     forces only, the assumption of the long-bearing papers)"""
     asperity_height: float = 0.0
-    """h_a: contact starts when h_min = c(1 − ξ) < h_a [m], 0 ≤ h_a < c"""
+    """h_a: contact starts when h_min = c(1 − ξ) < h_a [m], 0 ≤ h_a ≤ c/2 [T283]"""
     onset_tolerance: float = 1e-8
     """penetration at which a contact onset counts as resolved [m]"""
     min_impact_velocity: float = 1e-4
@@ -291,8 +295,8 @@ class JournalBearing:
             "asperity_height",
             self.asperity_height,
             "m",
-            f"in [0, clearance = {self.clearance:.6g})",
-            lambda v: 0 <= v < self.clearance,
+            f"in [0, clearance/2 = {ASPERITY_MAX * self.clearance:.6g}] (a roughness, not a gap) [T283]",
+            lambda v: 0 <= v <= ASPERITY_MAX * self.clearance,
         )
         try:
             name = film_name(self.film)
@@ -364,6 +368,8 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
         # film force at the journal centre, reaction through the same point [T8, T15]
         apply_pair(Q, bi, bj, ffx, ffy, sjx, sjy, six + ex, siy + ey)
         film_power = pair_power(qd, bi, bj, ffx, ffy, sjx, sjy, six + ex, siy + ey)
+        # dissipation of the film at the state its model sees [T282]: pressure −F_r·cξ̇ + F_t·cξΩ/2
+        loss = c * (0.5 * ft * xi_om - fr * xid)
         if ip[SHEAR] != 0:
             # shear torques [T75]: M_J = −M_C − (e/2)F_t on the journal; on the bushing
             # M_C − (e/2)F_t with −F at the bushing centre, i.e. M_C + (e/2)F_t with −F through
@@ -376,10 +382,12 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
             if bi >= 0:
                 Q[3 * bi + 2] += mb
             film_power += mj * wj + mb * wi
+            loss += mc * (wj - wi)  # Couette shear M_C·(ω_J − ω_B) ≥ 0
             out[O_TORQUE] = mj
         else:
             out[O_TORQUE] = 0.0
-        out[O_LOSS] = -film_power
+        out[O_LOSS] = loss
+        out[O_EXCH] = -film_power - loss  # 0 unless ξ > ξ_cap or shear = false [T282]
         power += film_power
     fn = 0.0
     fcx = 0.0

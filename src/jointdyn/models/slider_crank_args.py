@@ -118,6 +118,7 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
     bool (Lankarani–Nikravesh asperity contact of a lubricated joint)."""
     from jointdyn.forces.contact_laws import LankaraniNikravesh, journal_bearing_stiffness
     from jointdyn.forces.friction_laws import Ambrosio
+    from jointdyn.forces.journal import ASPERITY_MAX
 
     names = option_names or {}
     if joint not in joints():
@@ -144,12 +145,12 @@ def slider_crank_args(joint: str, given: dict, option_names: dict | None = None)
         if k in args:
             kw[k] = check_value(k, v, args[k][1], names.get(k))
     clearance = kw.get("clearance", args["clearance"][0])
-    if "asperity_height" in kw and not kw["asperity_height"] < clearance:
+    if "asperity_height" in kw and not kw["asperity_height"] <= ASPERITY_MAX * clearance:
         raise FieldError(
             names.get("asperity_height", "asperity_height"),
             kw["asperity_height"],
             "m",
-            f"< clearance = {clearance:.6g}",
+            f"<= clearance/2 = {ASPERITY_MAX * clearance:.6g} (a roughness, not a gap)",
         )
     if "friction" in given:
         mu = check_value("friction", given["friction"], "-", names.get("friction"))

@@ -170,7 +170,7 @@ class Model:
                     raise ModelError(f"element {n!r}: {err}") from None
         index = self._body_index("model")
         point_of = self._point_of("model")
-        cint, creal, _ = constraint_table([c for _, c in constraints], index, point_of, self._angle_of)
+        cint, creal, rows = constraint_table([c for _, c in constraints], index, point_of, self._angle_of)
         fint, freal, tables, mem0 = fe.element_tables([e for _, e in elements], index, point_of)
 
         nb = len(self.bodies)
@@ -194,6 +194,8 @@ class Model:
         if am > 3 * nb:
             raise ModelError(f"over-constrained: {am} constraint equations for {3 * nb} coordinates")
         y0 = np.concatenate([q, qd])
+        if centre_imperfect:
+            _warn_off_centre(elements, index, point_of, q, qd, cint, creal, rows)
         _assemble(y0, acint, acreal, am, minv, position_tol, max_iter)
         return self._system(
             constraints,
@@ -302,3 +304,35 @@ def _assemble(y, cint, creal, m, minv, tol, max_iter):
             "the constraint Jacobian is rank deficient at the assembled position "
             "(redundant constraints or a singular configuration)"
         )
+
+
+def _warn_off_centre(elements, index, point_of, q, qd, cint, creal, rows) -> None:
+    """Warn when the given positions satisfy the ideal joints and deliberately put a journal off
+    centre (1 % … 100 % of its clearance): assembly centres it [T289]."""
+    phi = np.zeros(rows)
+    eval_constraints(0.0, q, qd, cint, creal, phi, np.zeros((rows, len(q))), np.zeros(rows), np.zeros(rows))
+    if np.abs(phi).max(initial=0.0) > 1e-9:
+        return  # a rough guess that the assembly corrects anyway: nothing deliberate to report
+    for name, e in elements:
+        c = getattr(e, "clearance", None)
+        if not getattr(e, "centred", False) or not c:
+            continue
+        ends = []
+        for side in ("i", "j"):
+            body = getattr(e, f"body_{side}")
+            px, py = point_of(body, getattr(e, f"point_{side}"))
+            k = index(body)
+            if k < 0:
+                ends.append((px, py))
+                continue
+            x, y, a = q[3 * k : 3 * k + 3]
+            ends.append((x + np.cos(a) * px - np.sin(a) * py, y + np.sin(a) * px + np.cos(a) * py))
+        off = float(np.hypot(ends[1][0] - ends[0][0], ends[1][1] - ends[0][1]))
+        if 0.01 * c < off < c:
+            import warnings
+
+            warnings.warn(
+                f"element {name!r}: the given positions put the journal {off / c:.3g} c off centre; it "
+                "is assembled centred (e = 0); Model.compile(centre_imperfect=False) keeps the offset",
+                stacklevel=3,
+            )

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 import time
 import warnings
 from collections.abc import Callable
@@ -108,6 +109,9 @@ JACOBIANS = ("finite-differences", "exact")
 ERROR_SCALES = ("auto", "state", "clearance")
 
 
+RTOL_MIN = 1e-14  # smallest relative tolerance [-]: ~45 ulp of float64 [T288]
+
+
 @dataclass(frozen=True)
 class SimConfig:
     """How to integrate. Times in [s]."""
@@ -120,13 +124,13 @@ class SimConfig:
     """a name in ``jointdyn.integrators.SOLVERS``, or ``"auto"``: ``radau5`` when the system has a
     lubricated journal bearing (stiff film), else ``dopri5`` [T116]"""
     rtol: float = 1e-8
-    """relative tolerance [-] (relative to what: ``error_scale``)"""
+    """relative tolerance [-], in [1e-14, 1) (relative to what: ``error_scale``)"""
     atol: float = 1e-10
     """absolute tolerance, applied to every state component [SI of the component]"""
     max_step: float = math.inf
     """largest step [s]"""
     first_step: float = 0.0
-    """initial step [s]; 0 = automatic"""
+    """initial step [s], ≥ 0; 0 = automatic"""
     max_steps: int = 5_000_000
     """accepted + rejected steps before giving up"""
     baumgarte: float | None = None
@@ -156,6 +160,14 @@ class SimConfig:
             v = getattr(self, name)
             if not (math.isfinite(v) and 0 < v < 1):
                 raise ValueError(f"SimConfig.{name} = {v!r} [-]: must be in (0, 1)")
+        if not self.rtol >= RTOL_MIN:  # below ~100 ulp no step passes the error test [T288]
+            raise ValueError(f"SimConfig.rtol = {self.rtol!r} [-]: must be in [{RTOL_MIN:g}, 1) (float64)")
+        if not (math.isfinite(self.first_step) and self.first_step >= 0):
+            raise ValueError(
+                f"SimConfig.first_step = {self.first_step!r} [s]: must be finite and ≥ 0 (0 = automatic)"
+            )
+        if not (isinstance(self.max_steps, numbers.Integral) and self.max_steps >= 1):
+            raise ValueError(f"SimConfig.max_steps = {self.max_steps!r} [-]: must be an integer ≥ 1")
         if not self.max_step > 0:
             raise ValueError(f"SimConfig.max_step = {self.max_step!r} [s]: must be > 0")
         if self.baumgarte is not None and not (math.isfinite(self.baumgarte) and self.baumgarte >= 0):

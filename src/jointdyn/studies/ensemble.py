@@ -211,6 +211,12 @@ def ensemble(
 
     if replicas < 1:
         raise ValueError(f"replicas = {replicas!r} [-]: must be ≥ 1")
+    rt = [float(r) for r in rtols]
+    if not rt or len(set(rt)) != len(rt) or not all(0 < r < 1 for r in rt):  # [T287]
+        raise ValueError(
+            f"--rtols {','.join(f'{r:g}' for r in rt)} [-]: give distinct tolerances in (0, 1); a "
+            "repeated one would pass the convergence check across tolerances with shift 0"
+        )
     if revs <= transient_revs:
         raise ValueError(f"revs = {revs!r} [rev]: must exceed transient_revs = {transient_revs}")
     model_kw = dict(model_kw or {})

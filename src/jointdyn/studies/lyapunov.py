@@ -144,6 +144,11 @@ def system_lyapunov(
         raise ValueError(f"time_scale = {time_scale!r} [s]: must be finite and > 0")
     if not (math.isfinite(transient) and transient >= 0):
         raise ValueError(f"transient = {transient!r} [s]: must be ≥ 0")
+    if system.degrees_of_freedom() == 0:  # its motion is prescribed: no exponent to estimate [T286]
+        raise ValueError(
+            f"model {system.name!r} has no degree of freedom (every coordinate is prescribed by its "
+            "joints and drivers): it has no Lyapunov exponent; use a model with a clearance joint"
+        )
     solver = resolve_solver(system, solver)
     w = _weights(system, time_scale)
     P = system.packed(0.0)

@@ -31,6 +31,8 @@ Dataset (grid parameters as coordinates when the sweep is a pure grid), ``manife
 from __future__ import annotations
 
 import json
+import math
+import numbers
 import time
 import warnings
 from pathlib import Path
@@ -40,6 +42,8 @@ import numpy as np
 from jointdyn.core import atomic, interrupts
 from jointdyn.core.atomic import OutputError
 from jointdyn.errors import Interrupted
+from jointdyn.io import cluster
+from jointdyn.io.pool import run_local
 from jointdyn.studies.sweep_spec import (
     SweepSpec,
     latin_hypercube,
@@ -80,14 +84,41 @@ def case_arrays(res, arrays: dict) -> dict[str, list[float]]:
     return out
 
 
-def run_case(base: dict, params: dict, series_path: str | None = None, arrays: dict | None = None) -> dict:
+def _deadline(case_timeout: float | None):
+    """A progress callback that ends the case once its integration ran ``case_timeout`` [s]
+    of wall time (measured from the first progress report, i.e. after compilation) [T281]."""
+    if not case_timeout:
+        return None
+    start: list[float] = []
+
+    def progress(fraction: float) -> None:
+        now = time.perf_counter()
+        start.append(now) if not start else None
+        if now - start[0] > case_timeout:
+            raise TimeoutError(
+                f"case_timeout: integration still running after {case_timeout:g} s "
+                f"({100 * fraction:.0f} % of the run done)"
+            )
+
+    return progress
+
+
+def run_case(
+    base: dict,
+    params: dict,
+    series_path: str | None = None,
+    arrays: dict | None = None,
+    case_timeout: float | None = None,
+) -> dict:
     """Run one case (in a worker process) through :func:`jointdyn.studies.runs.run`; returns
     ``{"metrics": the run summary's metrics, "units": theirs, "rhs_evaluations", "wall_time_s"}``,
     plus ``"arrays"`` (:func:`case_arrays`) when ``arrays`` asks for them. Never raises: a
-    failure is returned as ``{"error": message}``."""
+    failure (also one longer than ``case_timeout`` [s], :func:`_deadline`) is returned as
+    ``{"error": message}``."""
     from jointdyn.studies import runs
 
     t0 = time.perf_counter()
+    progress = _deadline(case_timeout)
     try:
         merged = {**base, **params}
         with warnings.catch_warnings():
@@ -96,7 +127,7 @@ def run_case(base: dict, params: dict, series_path: str | None = None, arrays: d
                 from jointdyn.studies.sweep_spec import load_file_case
 
                 _, system, cfg = load_file_case(merged)
-                res, _, summ = runs.run(system, cfg)
+                res, _, summ = runs.run(system, cfg, progress=progress)
             else:
                 from jointdyn.models.catalog import DEFAULT, shipped
 
@@ -106,7 +137,9 @@ def run_case(base: dict, params: dict, series_path: str | None = None, arrays: d
 
                 m = shipped(merged.get("model", DEFAULT))
                 v, model_kw, run_kw, revs, keys = shipped_call(merged, set(m.variants()), check_keys=False)
-                res, _, summ = runs.run_shipped(m.name, v, revs, model_kw=model_kw, keys=keys, **run_kw)
+                res, _, summ = runs.run_shipped(
+                    m.name, v, revs, model_kw=model_kw, keys=keys, progress=progress, **run_kw
+                )
         extra = {"arrays": case_arrays(res, arrays)} if arrays else {}
         if series_path:
             with atomic.replacing(Path(series_path)) as tmp:
@@ -119,19 +152,6 @@ def run_case(base: dict, params: dict, series_path: str | None = None, arrays: d
         } | extra
     except Exception as err:  # recorded, the sweep goes on
         return {"error": f"{type(err).__name__}: {err}", "wall_time_s": time.perf_counter() - t0}
-
-
-def _connect(scheduler: str, timeout: float = 8.0):
-    """A Dask client, or one ValueError line within ``timeout`` [s]."""
-    try:
-        from distributed import Client
-    except ImportError:
-        raise ValueError("--scheduler needs Dask: pip install 'jointdyn[dist]'") from None
-    try:
-        return Client(scheduler, timeout=f"{timeout}s")
-    except (OSError, TimeoutError, ValueError) as err:
-        first = str(err).splitlines()[0] if str(err) else type(err).__name__
-        raise ValueError(f"--scheduler {scheduler}: cannot connect within {timeout:g} s ({first})") from None
 
 
 def _spec_record(spec: SweepSpec, n: int) -> dict:
@@ -175,19 +195,28 @@ def run_sweep(
     workers: int | None = None,
     progress=None,
     overwrite: bool = True,
+    case_timeout: float | None = None,
+    worker_timeout: float = cluster.WORKER_TIMEOUT,
+    notice=None,
 ):
     """Run all cases not yet done; write per-case files, ``sweep.nc`` and the manifest.
     Returns the Dataset. ``overwrite`` (the library default; the CLI asks for ``--overwrite``)
-    lets a non-empty sweep directory be replaced when not resuming."""
+    lets a non-empty sweep directory be replaced when not resuming. ``case_timeout`` [s]: a
+    case whose integration runs longer is recorded as failed (:func:`_deadline`);
+    ``worker_timeout`` [s] and ``notice`` (a callable taking one line): the Dask waits of
+    :func:`jointdyn.io.cluster.run_cluster` [T280]."""
     from jointdyn.io.rundir import OutputDir, check_path
 
     out = check_path(out)
-    if workers is not None and not (isinstance(workers, int) and workers >= 1):
+    if workers is not None and not (isinstance(workers, numbers.Integral) and workers >= 1):
         raise ValueError(f"--workers = {workers!r} [-]: must be an integer >= 1")
+    for name, v in (("--case-timeout", case_timeout), ("--worker-timeout", worker_timeout)):
+        if v is not None and not (isinstance(v, numbers.Real) and 0 < float(v) < math.inf):
+            raise ValueError(f"{name} = {v!r} [s]: must be a finite number > 0")
     cases, invalid = validate(spec)
     rec = _spec_record(spec, len(cases))
     scheduler = scheduler or spec.scheduler
-    client = _connect(scheduler) if scheduler else None  # before any file is touched
+    client = cluster.connect(scheduler) if scheduler else None  # before any file is touched
     try:
         od = OutputDir(out, "sweep", rec).claim(overwrite=overwrite, resume=resume)
         try:
@@ -196,13 +225,14 @@ def run_sweep(
         except BaseException:
             od.release()
             raise
-        return _run(spec, od, cases, invalid, rec, client, workers, progress)
+        waits = {"case_timeout": case_timeout, "worker_timeout": worker_timeout, "notice": notice}
+        return _run(spec, od, cases, invalid, rec, client, workers, progress, waits)
     finally:
         if client is not None:
-            client.close()
+            cluster.close(client)
 
 
-def _run(spec, od, cases, invalid, rec, client, workers, progress):
+def _run(spec, od, cases, invalid, rec, client, workers, progress, waits):
     out = od.path
     cdir = out / "cases"
     if cdir.is_symlink() or (cdir.exists() and not cdir.is_dir()):
@@ -235,24 +265,21 @@ def _run(spec, od, cases, invalid, rec, client, workers, progress):
     todo = [i for i in todo if i not in invalid]
     try:
         with interrupts.catching():
+            calls = ((i, (spec.base, cases[i], sp(i), spec.arrays, waits["case_timeout"])) for i in todo)
             if todo and client is not None:
-                from distributed import as_completed
-
-                futs = {
-                    client.submit(run_case, spec.base, cases[i], sp(i), spec.arrays, pure=False): i
-                    for i in todo
-                }
-                for fut in as_completed(futs):
-                    record(futs[fut], fut.result())
-                    interrupts.check()
+                cluster.run_cluster(client, run_case, calls, record, waits["worker_timeout"], waits["notice"])
             elif todo:
-                _local(spec, cases, todo, sp, workers, record)
+                run_local(run_case, calls, workers, record)
             ds = gather(out, spec, cases)
         with od.write("sweep.nc") as tmp:
             ds.to_netcdf(tmp, engine="h5netcdf")
     except Interrupted as err:
         od.finish("interrupted", f"{err}; {done} of {len(cases)} cases finished (continue with --resume)")
         raise
+    except ConnectionError as err:  # the cluster failed, not the cases: resumable
+        msg = f"{err}; {done} of {len(cases)} cases finished (continue with --resume)"
+        od.finish("failed", msg)
+        raise ConnectionError(msg) from None
     except BaseException as err:
         od.finish("failed", f"{type(err).__name__}: {err}")
         raise
@@ -263,13 +290,6 @@ def _run(spec, od, cases, invalid, rec, client, workers, progress):
     failed = int((ds["error"] != "").sum())
     od.finish("complete", f"{failed} of {len(cases)} cases failed" if failed else "", n_cases=len(cases))
     return ds
-
-
-def _local(spec, cases, todo, sp, workers, record) -> None:
-    from jointdyn.io.pool import run_local
-
-    calls = ((i, (spec.base, cases[i], sp(i), spec.arrays)) for i in todo)
-    run_local(run_case, calls, workers, record)
 
 
 def gather(out: Path, spec: SweepSpec, cases: list[dict]):
@@ -306,7 +326,7 @@ def gather(out: Path, spec: SweepSpec, cases: list[dict]):
         )
     for name in sorted({k for c in cases for k in c}):
         vals = [c.get(name, np.nan) for c in cases]
-        numeric = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in vals)
+        numeric = all(isinstance(v, numbers.Real) and not isinstance(v, bool) for v in vals)
         ds.coords[name] = (
             "case",
             np.array(vals, dtype=float) if numeric else np.array([str(v) for v in vals]),

@@ -9,6 +9,8 @@ recorded as a failed case with its message, and the sweep goes on with the other
 from __future__ import annotations
 
 import itertools
+import json
+import math
 import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -176,6 +178,7 @@ def load_sweep(path) -> SweepSpec:
                 raise ValueError(f"{path}: [{t}].{k} must be a list of values; got {v!r}")
             if not v:
                 raise ValueError(f"{path}: [{t}].{k} is empty: the sweep would have no cases")
+            _check_values(path, t, k, v)
     spec = SweepSpec(
         base=base,
         grid=doc.get("grid", {}),
@@ -190,6 +193,23 @@ def load_sweep(path) -> SweepSpec:
     for name in itertools.chain(spec.grid, spec.zipped, spec.sample.get("ranges", {})):
         _check_param(base, name, "sweep parameter")
     return spec
+
+
+MAX_CASES = 100_000  # cases in one sweep [-]: one JSON file each in DIR/cases [T285]
+
+
+def _check_values(path, table: str, name: str, values: list) -> None:
+    """Before any case runs [T285]: no NaN/inf (not a parameter value, and TOML's nan came back
+    as the string 'NaN'), no repeated grid value (the gathered grid would have a duplicate
+    coordinate and sweep.nc could not be written after every case ran)."""
+    bad = [v for v in values if isinstance(v, float) and not math.isfinite(v)]
+    if bad:
+        raise ValueError(f"{path}: [{table}].{name} = {values!r}: {bad[0]!r} is not a parameter value")
+    if table == "grid":
+        keys = [json.dumps(v, sort_keys=True, default=str) for v in values]
+        dup = sorted({repr(values[i]) for i, k in enumerate(keys) if keys.count(k) > 1})
+        if dup:
+            raise ValueError(f"{path}: [grid].{name} repeats {', '.join(dup)}: give each value once")
 
 
 def _check_param(base: dict, name: str, where: str = "sweep parameter"):
@@ -227,6 +247,8 @@ def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
     cases = spec.cases()
     if not cases:
         raise ValueError("the sweep has no cases (an empty list or sample n = 0)")
+    if len(cases) > MAX_CASES:  # one file per case, each checked and run: refuse before work [T285]
+        raise ValueError(f"the sweep has {len(cases)} cases; at most {MAX_CASES} (split it into sweeps)")
     invalid: dict[int, str] = {}
     seen: set[str] = set()
     joints: set = set()
