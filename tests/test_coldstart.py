@@ -33,7 +33,7 @@ CHILD = textwrap.dedent(
     """
     + LISTENER
     + """    from jointdyn.models import slider_crank as sc
-    from jointdyn.studies.runs import slider_crank_config
+    from jointdyn.models.slider_crank import slider_crank_config
     from jointdyn.simulation.simulate import simulate
     res = simulate(sc.slider_crank("perfect").compile(), slider_crank_config("perfect", 0.02, solver=sys.argv[1]))
     print(json.dumps(names))

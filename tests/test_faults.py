@@ -285,7 +285,7 @@ def _cli_rows():
         ("friction-nan", ["--joint", "dry", "--friction", "nan"], ["--friction", "finite"]),
         ("samples-zero", ["--samples-per-rev", "0"], ["--samples-per-rev"]),
         ("solver-unknown", ["--solver", "magic"], ["--solver", "valid"]),
-        ("set-on-shipped", ["--set", "a.b=1"], ["--set"]),
+        ("set-on-shipped", ["--set", "a.b=1"], ["a.b=1", "unknown key 'a'", "valid keys"]),
     ]
     return rows
 

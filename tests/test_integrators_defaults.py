@@ -8,9 +8,8 @@ import pytest
 
 from jointdyn import post
 from jointdyn.errors import SimulationError
-from jointdyn.models.slider_crank import slider_crank
+from jointdyn.models.slider_crank import slider_crank, slider_crank_config
 from jointdyn.simulation.simulate import SimConfig, simulate
-from jointdyn.studies.runs import slider_crank_config
 
 
 @pytest.fixture(scope="module")

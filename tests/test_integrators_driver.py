@@ -14,8 +14,8 @@ import pytest
 from jointdyn.errors import Interrupted
 from jointdyn.integrators.common import INTERRUPTED
 from jointdyn.models import slider_crank as sc
+from jointdyn.models.slider_crank import slider_crank_config
 from jointdyn.simulation.simulate import simulate
-from jointdyn.studies.runs import slider_crank_config
 
 CASES = [("dry", "dopri5"), ("dry", "rodas4"), ("alshaer2005", "rodas4"), ("alshaer2005", "ros34pw2")]
 
@@ -51,7 +51,7 @@ CHILD = textwrap.dedent(
     import sys, time
     from jointdyn.errors import Interrupted
     from jointdyn.models import slider_crank as sc
-    from jointdyn.studies.runs import slider_crank_config
+    from jointdyn.models.slider_crank import slider_crank_config
     from jointdyn.simulation.simulate import simulate
 
     joint, solver = sys.argv[1], sys.argv[2]

@@ -12,8 +12,8 @@ from jointdyn.integrators.common import fd_jacobian
 from jointdyn.integrators.driver import new_work, start
 from jointdyn.integrators.radau5 import RADAU5, attempt_radau5, dense
 from jointdyn.models import slider_crank as sc
+from jointdyn.models.slider_crank import slider_crank_config
 from jointdyn.simulation.simulate import simulate
-from jointdyn.studies.runs import slider_crank_config
 
 K_, D_, MASS, X0 = 1e4, 5.0, 0.2, 1e-3  # ω = 223.6 rad/s, ζ = 0.056
 

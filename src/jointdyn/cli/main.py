@@ -149,6 +149,10 @@ def _run_shipped(name: str, given: dict, set_: list[str], out: Path, overwrite: 
     if run_kw.get("solver", "auto") not in ("auto", *SOLVERS):
         raise ValueError(f"--solver {run_kw['solver']!r}: unknown; valid: auto, {', '.join(SOLVERS)}")
     model, cfg = m.setup(variant, revs, model_kw, **run_kw)
+    if set_:  # the keys checked before the directory is claimed
+        from jointdyn.io.modelfile import with_keys
+
+        with_keys(model, cfg, list(set_), f"{name} ({variant})", assemble=False)
     check_memory(model, cfg.n_out, "--revs × --samples-per-rev")
     spec = {"model": name, m.variant_arg: variant, "revs": revs, **run_kw} | {
         k: given[k] for k in given if k not in run_kw
