@@ -39,6 +39,7 @@ class FVProblem:
     band     M in symmetric upper band storage in the zig-zag θ order (N, u+1), u = 2·nz:
              band[q, d] = M[perm[q], perm[q+d]] (for :func:`~jointdyn.film.lcp.solve_lcp_banded`)
     perm     unknown order of ``band``: position q holds unknown perm[q] (N,) [-]
+    flow     the average-film model (:class:`~jointdyn.film.flow_factors.AverageFlow`) or None
     """
 
     xi: float
@@ -53,6 +54,7 @@ class FVProblem:
     area: np.ndarray
     band: np.ndarray
     perm: np.ndarray
+    flow: object = None
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -84,15 +86,20 @@ def check_ld(lam: float) -> None:
 
 
 def assemble(
-    xi: float, lam: float, nt: int = DEFAULT_MESH[0], nz: int = DEFAULT_MESH[1], kappa=None
+    xi: float, lam: float, nt: int = DEFAULT_MESH[0], nz: int = DEFAULT_MESH[1], kappa=None, flow=None
 ) -> FVProblem:
-    """Finite-volume discretisation [T71] of the nondimensional Reynolds equation [T70].
+    """Finite-volume discretisation [T71] of the nondimensional Reynolds equation [T70], or with
+    ``flow`` of Patir–Cheng's average Reynolds equation [T268]: H³ → φ_x H³ on the θ faces and
+    φ_z H³ on the ζ faces, the wedge source ω∂H/∂θ → ω∂G/∂θ (G = (h̄_T + σφ_s)/c, integrated
+    exactly over each control volume as the difference of G at its θ faces), the squeeze source
+    scaled by ∂h̄_T/∂h.
 
     xi     eccentricity ratio, 0 ≤ ξ < 1 [-]
     lam    L/D > 0 [-]
     nt     cells around the circumference [-]
     nz     cells on the half length [-]
     kappa  θ-clustering parameter (default 0.85ξ) [-]
+    flow   None (smooth film) or an :class:`~jointdyn.film.flow_factors.AverageFlow`
     """
     check_xi(xi)
     check_ld(lam)
@@ -103,8 +110,12 @@ def assemble(
     s = np.arange(nt) * ds
     th, dth = theta_map(s, kappa)
     thf, dthf = theta_map(s + 0.5 * ds, kappa)  # faces i+1/2
-    H3 = (1.0 + xi * np.cos(th)) ** 3
-    af = (1.0 + xi * np.cos(thf)) ** 3 / dthf  # H³/θ' at the faces
+    if flow is None:
+        H3 = (1.0 + xi * np.cos(th)) ** 3
+        af = (1.0 + xi * np.cos(thf)) ** 3 / dthf  # H³/θ' at the faces
+    else:
+        H3 = flow.pressure_z(1.0 + xi * np.cos(th))
+        af = flow.pressure_x(1.0 + xi * np.cos(thf)) / dthf
     z = zeta_nodes(lam, nz)
     dzf = np.diff(z)
     cv = np.empty(nz)
@@ -134,9 +145,16 @@ def assemble(
     M = csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(N, N))
     area = (ds * dth)[:, None] * cv[None, :]
     bA = -(2.0 * np.cos(th))[:, None] * area  # M P = −∫source
-    bB = ((2.0 + xi * xi) * np.sin(th))[:, None] * area
+    if flow is None:
+        bB = ((2.0 + xi * xi) * np.sin(th))[:, None] * area
+    else:  # B(2+ξ²)/ξ = Ω: M P = −Ω ∫∂G/∂θ = −Ω (G(θ_{i+1/2}) − G(θ_{i−1/2}))·cv [T268]
+        bA = bA * flow.squeeze(1.0 + xi * np.cos(th))[:, None]
+        G = flow.couette(1.0 + xi * np.cos(thf))
+        dG = G - np.roll(G, 1)
+        scale = 0.0 if xi == 0.0 else -(2.0 + xi * xi) / xi
+        bB = (scale * dG)[:, None] * cv[None, :]
     band, perm = band_form(M, nt, nz)
-    return FVProblem(xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel(), band, perm)
+    return FVProblem(xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel(), band, perm, flow)
 
 
 def band_form(M: csr_matrix, nt: int, nz: int) -> tuple[np.ndarray, np.ndarray]:
