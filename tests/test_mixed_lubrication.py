@@ -100,6 +100,15 @@ def test_published_shear_flow_branches_meet_at_lambda_5():
         assert lo == pytest.approx(A2 * math.exp(-1.25), rel=1e-3)
 
 
+def test_factors_stay_nonnegative_below_their_range():
+    L = np.linspace(0.0, 10.0, 401)
+    for g in ff.GAMMAS:
+        assert np.all(ff.phi_x(L, g) > 0.0) and np.all(ff.phi_z(L, g) > 0.0)
+        assert np.all(ff.phi_fp(L, g) >= 0.0) and np.all(ff.stress_fs(L, g) >= 0.0)
+        assert np.all(ff.shear_flow(L, g) >= 0.0)
+    assert np.all(ff.phi_f(L[1:]) > 0.0)
+
+
 def test_phi_f_against_its_definition_and_branches():
     # φ_f = E[Λ/(Λ + 3x)], x with density (35/32)(1−x²)³ on [−1, 1], for Λ > 3 (no contact)
     dens = lambda x: 35 / 32 * (1 - x * x) ** 3  # noqa: E731

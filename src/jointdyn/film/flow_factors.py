@@ -13,8 +13,10 @@ ratio V_r = (σ₁² − σ₂²)/σ² (surface 1 the moving journal, 2 the bush
   form below, its power series in 1/z² for z = Λ/3 > 2), φ_fs = V_r·A₃Λ^{α₄}e^{−α₅Λ + α₆Λ²}
   (Λ < 7, 0 beyond), φ_fp = 1 − D e^{−sΛ}.
 
-The fits hold for Λ ≥ 0.5 (φ_x for γ < 1 from Λ ≈ 1); below they are evaluated at Λ = 0.5 (the
-mixed film there carries a small share of the load, the asperities the rest [T262]). The mean
+The fits hold for Λ ≥ 0.5 (φ_x for γ = 1/9, 1/6 from Λ = 1, γ = 1/3 from 0.75: there the fit
+would turn negative); below they are evaluated at the end of their range (the mixed film there
+carries a small share of the load, the asperities the rest [T262]); φ_fp (−0.006 at Λ = 0.5,
+γ = 1) is floored at 0. The mean
 gap is h̄_T = σ(ΛΦ(Λ) + ϕ(Λ)) for Gaussian heights (Φ, ϕ the normal distribution and density)
 [T267]. Every factor → its smooth value (φ_x, φ_z, φ_f, φ_fp → 1; φ_s, φ_fs → 0) as Λ → ∞.
 """
@@ -54,6 +56,8 @@ STRESS_FS = (
 STRESS_FP = ((1.51, 0.52), (1.51, 0.54), (1.47, 0.58), (1.40, 0.66), (0.98, 0.79), (0.97, 0.91), (0.73, 0.91))
 #: smallest Λ at which the fits are evaluated [-]
 LAMBDA_MIN = 0.5
+#: smallest Λ of the published range of φ_x per γ (Patir & Cheng 1978, Table 1) [-]
+PRESSURE_LAMBDA_MIN = (1.0, 1.0, 0.75, 0.5, 0.5, 0.5, 0.5)
 
 
 def gamma_index(gamma: float) -> int:
@@ -72,8 +76,9 @@ def _lam(L):
 
 def phi_x(L, gamma: float = 1.0):
     """Pressure flow factor φ_x(Λ, γ) [-] along the sliding direction [T264]."""
-    C, r = PRESSURE[gamma_index(gamma)]
-    L = _lam(L)
+    k = gamma_index(gamma)
+    C, r = PRESSURE[k]
+    L = np.maximum(np.asarray(L, dtype=float), PRESSURE_LAMBDA_MIN[k])
     return 1.0 - C * np.exp(-r * L) if gamma <= 1.0 else 1.0 + C * L ** (-r)
 
 
@@ -133,9 +138,9 @@ def stress_fs(L, gamma: float = 1.0):
 
 
 def phi_fp(L, gamma: float = 1.0):
-    """Shear stress factor φ_fp(Λ, γ) = 1 − D e^{−sΛ} [-] (Poiseuille part) [T266]."""
+    """Shear stress factor φ_fp(Λ, γ) = max(1 − D e^{−sΛ}, 0) [-] (Poiseuille part) [T266]."""
     D, s = STRESS_FP[gamma_index(gamma)]
-    return 1.0 - D * np.exp(-s * _lam(L))
+    return np.maximum(1.0 - D * np.exp(-s * _lam(L)), 0.0)
 
 
 def mean_gap(L):
