@@ -91,6 +91,21 @@ def test_fits_use_the_published_coefficients():
         assert ff.STRESS_FP[k] == (r["D"], r["s"])
 
 
+def test_pressure_flow_coefficients_against_a_regression_over_gamma():
+    # an independent regression of Patir–Cheng's Table 1 over γ, as used in a public EHD code
+    # (C = 0.89679 − 0.26591 ln γ, r = 0.43006 − 0.10828γ + 0.23821γ² for γ < 1; C = −0.10667 +
+    # 0.1075γ, r = 1.5 for γ > 1): the transcribed coefficients lie within 0.02 of it
+    for g in ff.GAMMAS:
+        C, r = ff.PRESSURE[ff.gamma_index(g)]
+        if g < 1.0:
+            Cr, rr = 0.89679 - 0.26591 * math.log(g), 0.43006 - 0.10828 * g + 0.23821 * g * g
+        elif g > 1.0:
+            Cr, rr = -0.10667 + 0.1075 * g, 1.5
+        else:
+            Cr, rr = 0.89679, 0.43006 - 0.10828 + 0.23821
+        assert abs(C - Cr) < 0.02 and abs(r - rr) < 0.02
+
+
 def test_published_shear_flow_branches_meet_at_lambda_5():
     # an independent check of the transcribed table: Patir & Cheng fitted the two branches of Φ_s
     # separately; the published coefficients make them meet at Λ = 5 to < 0.1 %
