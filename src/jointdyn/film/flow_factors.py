@@ -164,7 +164,7 @@ class AverageFlow:
 
     sigma_over_c  composite roughness over radial clearance σ/c > 0 [-]
     gamma         Peklenik surface orientation (one of ``GAMMAS``) [-]
-    vr            variance ratio V_r = (σ₁² − σ₂²)/σ² ∈ [−1, 1] [-], 1 the journal alone rough
+    vr            variance ratio V_r = (σ₁² − σ₂²)/σ², −1 ≤ V_r ≤ 1 [-] (1: the journal alone rough)
     """
 
     sigma_over_c: float
