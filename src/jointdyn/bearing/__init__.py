@@ -1,7 +1,8 @@
 """Steady journal-bearing engineering: 2-D Reynolds solver with cavitation conditions, design
 quantities, the Raimondi–Boyd table, equilibrium for a load, film outputs, shear torque
-[T70–T83]. The names below are imported lazily, so importing ``jointdyn.cli`` (which registers
-``bearing-table``) does not load the solver."""
+[T70–T83]; mixed lubrication and the Stribeck curve (:mod:`.mixed`, [T260–T272]); the effective
+temperature (:mod:`.thermal`, [T276–T277]). The names below are imported lazily, so importing
+``jointdyn.cli`` (which registers ``bearing-table``) does not load the solver."""
 
 from __future__ import annotations
 

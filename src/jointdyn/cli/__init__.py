@@ -16,6 +16,7 @@ from jointdyn.cli.common import _progress, app
 from jointdyn.cli import main  # noqa: F401  run, reproduce, sweep
 from jointdyn.cli import files  # noqa: F401  plot, plot-sweep, animate, film-force, list
 from jointdyn.cli import bearing  # noqa: F401  bearing-table
+from jointdyn.cli import stribeck  # noqa: F401  stribeck
 from jointdyn.cli import chaos  # noqa: F401  poincare, bifurcation, lyapunov, spectrum, ensemble
 from jointdyn.cli import cache  # noqa: F401  cache info, cache clear
 

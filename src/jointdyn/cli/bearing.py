@@ -72,7 +72,7 @@ def bearing_table_cmd(
     speed: float = typer.Option(None, help="journal speed N in rev/s (bearing fixed)"),
     radius: float = typer.Option(None, help="journal radius R in m"),
     clearance: float = typer.Option(None, help="radial clearance c in m"),
-    viscosity: float = typer.Option(None, help="dynamic viscosity μ in Pa·s"),
+    viscosity: float = typer.Option(None, help="dynamic viscosity μ in Pa·s (or --oil and --inlet-temp)"),
     grooves: int = typer.Option(
         None, help="axial supply grooves, evenly spaced from +90° off the load line (2: at ±90°)"
     ),
@@ -80,6 +80,10 @@ def bearing_table_cmd(
     feed_pressure: float = typer.Option(
         0.0, help="groove supply pressure in Pa (gauge; > 0 needs --speed --radius --clearance --viscosity)"
     ),
+    oil: str = typer.Option(
+        None, help="oil grade (ISO_VG22…ISO_VG220, SAE_10…SAE_60): effective temperature"
+    ),
+    inlet_temp: float = typer.Option(None, help="oil inlet temperature T_in in °C (with --oil)"),
 ):
     """Steady bearing design table (Raimondi–Boyd variables) per ε; with --load/--speed/--radius/
     --clearance/--viscosity also the operating point (ε, attitude, h_min, power loss, peak pressure)."""
@@ -91,15 +95,30 @@ def bearing_table_cmd(
     console = Console(stderr=True)
     try:
         eps_list = _floats(eps, "eps")
-        extra = (speed, radius, clearance, viscosity)
-        supply = _grooves(grooves, groove_width, feed_pressure, extra, load)
+        supply = _grooves(grooves, groove_width, feed_pressure, (speed, radius, clearance, viscosity), load)
         tab = bearing_table(model, cavitation, ld, eps_list, grooves=supply)
         op = None
-        if supply is None and (load is not None or any(v is not None for v in extra)):
-            if load is None or any(v is None for v in extra):
-                raise ValueError("--load needs --speed, --radius, --clearance and --viscosity (all SI)")
+        extra = (speed, radius, clearance)
+        if (oil is None) != (inlet_temp is None):
+            raise ValueError("--oil and --inlet-temp go together (grade and inlet temperature in °C)")
+        if oil is not None and viscosity is not None:
+            raise ValueError("give --viscosity or --oil with --inlet-temp, not both")
+        if supply is None and (load is not None or any(v is not None for v in (*extra, viscosity, oil))):
+            if load is None or any(v is None for v in extra) or (viscosity is None and oil is None):
+                raise ValueError(
+                    "--load needs --speed, --radius, --clearance and --viscosity or --oil/--inlet-temp (SI)"
+                )
             length = ld * 2.0 * radius
-            op = equilibrium(load, speed, radius, length, clearance, viscosity, model, cavitation)
+            if oil is not None:
+                from jointdyn.bearing.thermal import effective_temperature
+                from jointdyn.film.viscosity import oil_by_name
+
+                grade = oil_by_name(oil)
+                op = effective_temperature(
+                    load, speed, radius, length, clearance, grade, inlet_temp, model, cavitation
+                )
+            else:
+                op = equilibrium(load, speed, radius, length, clearance, viscosity, model, cavitation)
     except (ValueError, OSError) as err:
         console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
         raise typer.Exit(2) from None
@@ -131,6 +150,9 @@ def bearing_table_cmd(
             "flow": "m³/s",
             "side_flow": "m³/s",
             "sommerfeld": "-",
+            "t_eff": "°C",
+            "delta_t": "K",
+            "viscosity": "Pa·s",
         }
         console.print("operating point:")
         for k, v in op.items():

@@ -42,6 +42,7 @@ class FVProblem:
     phase    angle of the maximum film on the mesh [rad]: H = 1 + ξ cos(θ − phase) (0: the mesh
              angles are the film angles; a mesh fixed in the bearing has phase = γ + π) [T240]
     Hface    film thickness at the θ faces i+1/2 (nt,) [-] (the Couette fluxes of [T241])
+    flow     the average-film model (:class:`~jointdyn.film.flow_factors.AverageFlow`) or None
     """
 
     xi: float
@@ -58,6 +59,7 @@ class FVProblem:
     perm: np.ndarray
     phase: float = 0.0
     Hface: np.ndarray | None = None
+    flow: object = None
 
     @property
     def film_theta(self) -> np.ndarray:
@@ -101,8 +103,13 @@ def assemble(
     kappa=None,
     phase: float = 0.0,
     theta0: float = 0.0,
+    flow=None,
 ) -> FVProblem:
-    """Finite-volume discretisation [T71] of the nondimensional Reynolds equation [T70].
+    """Finite-volume discretisation [T71] of the nondimensional Reynolds equation [T70], or with
+    ``flow`` of Patir–Cheng's average Reynolds equation [T268]: H³ → φ_x H³ on the θ faces and
+    φ_z H³ on the ζ faces, the wedge source ω∂H/∂θ → ω∂G/∂θ (G = (h̄_T + σφ_s)/c, integrated
+    exactly over each control volume as the difference of G at its θ faces), the squeeze source
+    scaled by ∂h̄_T/∂h.
 
     xi     eccentricity ratio, 0 ≤ ξ < 1 [-]
     lam    L/D > 0 [-]
@@ -111,6 +118,7 @@ def assemble(
     kappa  θ-clustering parameter (default 0.85ξ; 0 = uniform) [-]
     phase  mesh angle of the maximum film [rad]: H = 1 + ξ cos(θ − phase) [T240]
     theta0 mesh angle of node 0 [rad] (uniform meshes fixed in the bearing) [T240]
+    flow   None (smooth film) or an :class:`~jointdyn.film.flow_factors.AverageFlow`
     """
     check_xi(xi)
     check_ld(lam)
@@ -123,9 +131,14 @@ def assemble(
     thf, dthf = theta_map(s + 0.5 * ds, kappa)  # faces i+1/2
     th = np.mod(th + theta0, 2.0 * np.pi)
     thf = thf + theta0
+    Hn = 1.0 + xi * np.cos(th - phase)
     Hf = 1.0 + xi * np.cos(thf - phase)
-    H3 = (1.0 + xi * np.cos(th - phase)) ** 3
-    af = Hf**3 / dthf  # H³/θ' at the faces
+    if flow is None:
+        H3 = Hn**3
+        af = Hf**3 / dthf  # H³/θ' at the faces
+    else:
+        H3 = flow.pressure_z(Hn)
+        af = flow.pressure_x(Hf) / dthf
     z = zeta_nodes(lam, nz)
     dzf = np.diff(z)
     cv = np.empty(nz)
@@ -155,10 +168,17 @@ def assemble(
     M = csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(N, N))
     area = (ds * dth)[:, None] * cv[None, :]
     bA = -(2.0 * np.cos(th - phase))[:, None] * area  # M P = −∫source
-    bB = ((2.0 + xi * xi) * np.sin(th - phase))[:, None] * area
+    if flow is None:
+        bB = ((2.0 + xi * xi) * np.sin(th - phase))[:, None] * area
+    else:  # B(2+ξ²)/ξ = Ω: M P = −Ω ∫∂G/∂θ = −Ω (G(θ_{i+1/2}) − G(θ_{i−1/2}))·cv [T268]
+        bA = bA * flow.squeeze(Hn)[:, None]
+        G = flow.couette(Hf)
+        dG = G - np.roll(G, 1)
+        scale = 0.0 if xi == 0.0 else -(2.0 + xi * xi) / xi
+        bB = (scale * dG)[:, None] * cv[None, :]
     band, perm = band_form(M, nt, nz)
     return FVProblem(
-        xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel(), band, perm, float(phase), Hf
+        xi, lam, th, dth, z, cv, M, bA.ravel(), bB.ravel(), area.ravel(), band, perm, float(phase), Hf, flow
     )
 
 
