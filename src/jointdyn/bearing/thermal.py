@@ -30,7 +30,7 @@ def effective_temperature(
     oil: Oil,
     inlet_temp: float,
     model: str = "finite",
-    cavitation: str = "reynolds",
+    cavitation: str | None = "reynolds",
     mesh=DEFAULT_MESH,
 ) -> dict:
     """Steady operating point at the effective temperature [T276–T277].
@@ -49,7 +49,7 @@ def effective_temperature(
     ):
         if not (math.isfinite(v) and v > 0.0):
             raise ValueError(f"{name} = {v!r} [{unit}]: must be finite and > 0")
-    _check_model(model, cavitation)
+    model, cavitation = _check_model(model, cavitation)  # film-name aliases, None: the default
     oil.viscosity(inlet_temp)  # range check of the inlet temperature
     ld = length / (2.0 * radius)
     P = load / (2.0 * radius * length)
