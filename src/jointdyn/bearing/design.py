@@ -207,6 +207,13 @@ def bearing_table(
     return out
 
 
+def check_positive(*items) -> None:
+    """ValueError naming the first ``(name, value, unit)`` that is not finite and > 0."""
+    for name, v, unit in items:
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"{name} = {v!r} [{unit}]: must be finite and > 0")
+
+
 def equilibrium(
     load: float,
     speed: float,
@@ -231,16 +238,14 @@ def equilibrium(
     resisting), power_loss [W], peak_pressure [Pa], theta_pmax_deg, theta_end_deg [deg],
     flow [m³/s], side_flow [m³/s], sommerfeld [-].
     """
-    for name, v, unit in (
+    check_positive(
         ("load", load, "N"),
         ("speed", speed, "rev/s"),
         ("radius", radius, "m"),
         ("length", length, "m"),
         ("clearance", clearance, "m"),
         ("viscosity", viscosity, "Pa·s"),
-    ):
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{name} = {v!r} [{unit}]: must be finite and > 0")
+    )
     model, cavitation = _check_model(model, cavitation)
     ld = length / (2.0 * radius)
     if clearance >= radius:  # before the load is judged: c ≥ R is no journal bearing [T284]

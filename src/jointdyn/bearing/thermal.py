@@ -16,7 +16,14 @@ from __future__ import annotations
 
 import math
 
-from jointdyn.bearing.design import EPS_MAX, _check_model, _row, equilibrium, steady_quantities
+from jointdyn.bearing.design import (
+    EPS_MAX,
+    _check_model,
+    _row,
+    check_positive,
+    equilibrium,
+    steady_quantities,
+)
 from jointdyn.film.fv import DEFAULT_MESH
 from jointdyn.film.viscosity import Oil
 
@@ -40,15 +47,13 @@ def effective_temperature(
     inlet_temp  T_in [°C], inside the oil law's range
     Returns the :func:`equilibrium` dict at T_eff plus t_eff, delta_t [°C / K], viscosity [Pa·s].
     """
-    for name, v, unit in (
+    check_positive(
         ("load", load, "N"),
         ("speed", speed, "rev/s"),
         ("radius", radius, "m"),
         ("length", length, "m"),
         ("clearance", clearance, "m"),
-    ):
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"{name} = {v!r} [{unit}]: must be finite and > 0")
+    )
     model, cavitation = _check_model(model, cavitation)  # film-name aliases, None: the default
     oil.viscosity(inlet_temp)  # range check of the inlet temperature
     ld = length / (2.0 * radius)
