@@ -16,10 +16,10 @@ import numpy as np
 
 from jointdyn.forces.springs import SpringDamper
 from jointdyn.models import slider_crank as sc
+from jointdyn.models.slider_crank import slider_crank_config
 from jointdyn.multibody.model import Model
 from jointdyn.simulation.simulate import SimConfig, simulate
 from jointdyn.studies.reproduce import PAPER_CASES, run_case
-from jointdyn.studies.runs import slider_crank_config
 
 
 def osc(k, d):

@@ -128,7 +128,7 @@ def _run(src: Path, cache: str, argv: list[str]) -> dict:
 WARM_CHILD = """
 import json, os, sys, time
 from jointdyn.models import slider_crank as sc
-from jointdyn.studies.runs import slider_crank_config
+from jointdyn.models.slider_crank import slider_crank_config
 from jointdyn.simulation.simulate import simulate
 joint, revs, repeat = sys.argv[1], float(sys.argv[2]), int(sys.argv[3])
 system = sc.slider_crank(joint).compile()

@@ -22,9 +22,9 @@ from jointdyn.core.borrowed import borrowed
 from jointdyn.core.constraints import eval_constraints, eval_constraints_into
 from jointdyn.integrators import SOLVERS
 from jointdyn.models import slider_crank as sc
+from jointdyn.models.slider_crank import slider_crank_config
 from jointdyn.multibody.dynamics import _schur_into, cholesky_factor, outputs, rhs
 from jointdyn.simulation.simulate import simulate
-from jointdyn.studies.runs import slider_crank_config
 
 
 @njit(cache=True)

@@ -121,6 +121,15 @@ def kinds_of(fint: np.ndarray) -> tuple:
     return kinds_tuple(codes, tuple(FORCE_KERNELS), ids)
 
 
+def kinds_union(a: tuple, b: tuple) -> tuple:
+    """The kinds of two systems together, entry by entry (:func:`kinds_of`): a kernel set that
+    serves both [T341]. Where both have a kind with different identities (laws from user code),
+    ``a``'s is kept: the second system then compiles its own set, as without the union."""
+    if len(a) != len(b):
+        return a
+    return tuple(x if y is None or x == y else (y if x is None else x) for x, y in zip(a, b, strict=True))
+
+
 @njit(cache=True)
 def eval_forces(t, q, qd, mem, fint, freal, tables, Q, out, kinds=None):
     """Add all element forces to Q; fill ``out`` (nf, NOUT). ``kinds`` (:func:`kinds_of`) selects

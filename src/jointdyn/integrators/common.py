@@ -6,6 +6,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from jointdyn.core.arrays import copy_matrix, copy_vector
 from jointdyn.forces.elements import advance_memory
 from jointdyn.integrators.accuracy import film_gap_unresolved
 from jointdyn.multibody.dynamics import project, rhs
@@ -101,8 +102,8 @@ def start_outputs(y0, mem0, t0, t_out):
     MEM = np.zeros((nout, mem0.shape[0], mem0.shape[1]))
     iout = 0
     while iout < nout and t_out[iout] <= t0:
-        Y[iout] = y0
-        MEM[iout] = mem0
+        copy_vector(Y[iout], y0)
+        copy_matrix(MEM[iout], mem0)
         iout += 1
     return Y, MEM, iout
 
@@ -122,7 +123,7 @@ def fd_jacobian(t, y, f0, mem, P, Jm, ft, work, fw):
         else:
             scale = max(scale, 1e-5)
         d = eps * scale
-        work[:] = y
+        copy_vector(work, y)
         work[j] += d
         bad |= rhs(t, work, mem, P, fw)
         for i in range(nn):

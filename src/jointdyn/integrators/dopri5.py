@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from jointdyn.core.arrays import copy_matrix
 from jointdyn.integrators.common import error_norm, hermite
 from jointdyn.integrators.driver import ATTEMPT_OK, CTL0, ICTL0, Stepper
 from jointdyn.multibody.dynamics import rhs
@@ -105,7 +106,7 @@ def dense(t, t_new, y, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
     while iout < t_out.shape[0] and t_out[iout] <= t_new + 1e-15 * abs(t_new):
         th = (t_out[iout] - t) / h if h > 0 else 1.0
         hermite(y, f0, y1, K[6], h, min(max(th, 0.0), 1.0), Y[iout])
-        MEM[iout] = mem
+        copy_matrix(MEM[iout], mem)
         iout += 1
     return iout
 

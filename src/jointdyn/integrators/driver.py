@@ -29,6 +29,7 @@ from typing import NamedTuple
 import numpy as np
 from numba import njit
 
+from jointdyn.core.arrays import copy_matrix, copy_vector
 from jointdyn.core.borrowed import borrowed
 from jointdyn.forces.contact_events import onset_limit, refine_peaks
 from jointdyn.forces.elements import onset_fraction, step_limit
@@ -210,7 +211,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
         # function of its own, which would link and optimise the right-hand side once more)
         if w.ictl[STARTED] == 0:
             t = w.ctl[T]
-            st = accept_hooks(t, w.y, w.mem, P, do_project, 0.0, 0.0)  # = the defaults: no gap test
+            st = accept_hooks(t, w.y, w.mem, P, do_project, 0.0, 0.0, w.ysc)  # rtol 0: no gap test [T340]
             if st != OK:
                 return st
             if rhs(t, w.y, w.mem, P, w.f0) != 0:
@@ -290,7 +291,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
             if LAND == 0:
                 iout = _dense(t, t_new, y, w.f0, y1, w.K, mem, ctl, ictl, t_out, iout, w.Y, w.MEM)
             refine_peaks(y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal, P.kinds)  # [T202]
-            y[:] = y1
+            copy_vector(y, y1)
             t = t_new
             stats[1] += 1
             ictl[AGE] += 1
@@ -300,11 +301,11 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                 break
             if LAND == 1:
                 while iout < nout and t_out[iout] <= t + 1e-14 * abs(t):
-                    w.Y[iout] = y
-                    w.MEM[iout] = mem
+                    copy_vector(w.Y[iout], y)
+                    copy_matrix(w.MEM[iout], mem)
                     iout += 1
             if FSAL >= 0 and fsal_reusable(y, y1, w.err, rtol, atol, do_project and P.n_rows > 0):
-                w.f0[:] = w.K[FSAL]  # first-same-as-last [T203]
+                copy_vector(w.f0, w.K[FSAL])  # first-same-as-last [T203]
             elif AT_ACCEPT == 0:  # (AT_ACCEPT: f0 after the controller)
                 if rhs(t, y, mem, P, w.f0) != 0:
                     status = RHS_FAILED
@@ -330,8 +331,8 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                         break
                     stats[0] += 1
         if status == OK and iout == nout:
-            w.Y[nout - 1] = y
-            w.MEM[nout - 1] = mem
+            copy_vector(w.Y[nout - 1], y)
+            copy_matrix(w.MEM[nout - 1], mem)
         ctl[T] = t
         ctl[H] = h
         ctl[H_PROP] = h_prop

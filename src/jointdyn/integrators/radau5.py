@@ -18,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from jointdyn.core.arrays import copy_matrix
 from jointdyn.integrators.driver import (
     AGE,
     ATTEMPT_DIVERGED,
@@ -324,7 +325,7 @@ def dense(t, t_new, y, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
         s = min(max((t_out[iout] - t_new) / h, -1.0), 0.0) if h > 0 else 0.0
         for i in range(y1.shape[0]):
             Y[iout, i] = y1[i] + s * (K[6, i] + (s - C2M1) * (K[7, i] + (s - C1M1) * K[8, i]))
-        MEM[iout] = mem
+        copy_matrix(MEM[iout], mem)
         iout += 1
     return iout
 

@@ -25,6 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from jointdyn.core.arrays import copy_matrix, copy_vector
 from jointdyn.integrators.common import error_norm_scaled
 from jointdyn.integrators.driver import ATTEMPT_OK, Stepper
 from jointdyn.multibody.dynamics import rhs
@@ -129,7 +130,7 @@ def attempt_rodas4(t, h, P, w, rtol, atol):
     bad = 0
     for s in range(6):
         if s == 0:
-            fw[:] = w.f0
+            copy_vector(fw, w.f0)
         else:
             for i in range(nn):
                 acc = y[i]
@@ -181,7 +182,7 @@ def dense(t, t_new, y0, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
                 d1 += H[0, j] * K[j, i]
                 d2 += H[1, j] * K[j, i]
             Y[iout, i] = (1.0 - th) * y0[i] + th * (y1[i] + (1.0 - th) * (d1 + th * d2))
-        MEM[iout] = mem
+        copy_matrix(MEM[iout], mem)
         iout += 1
     return iout
 

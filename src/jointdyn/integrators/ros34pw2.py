@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from jointdyn.core.arrays import copy_vector
 from jointdyn.integrators.common import error_norm_scaled
 from jointdyn.integrators.driver import AGE, ATTEMPT_BAD, ATTEMPT_OK, ATTEMPT_SINGULAR, CTL0, Stepper
 from jointdyn.integrators.rodas4 import lu_factor, lu_solve
@@ -73,7 +74,7 @@ def attempt_ros34pw2(t, h, P, w, rtol, atol):
             yt[i] = acc
             gk[i] = g
         if s == 0:
-            fw[:] = w.f0
+            copy_vector(fw, w.f0)
         else:
             bad |= rhs(t + CT[s] * h, yt, mem, P, fw)
             w.stats[0] += 1

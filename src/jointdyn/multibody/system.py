@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
 from dataclasses import dataclass, field
 from typing import NamedTuple
 
@@ -34,6 +37,29 @@ class Packed(NamedTuple):
     kinds: tuple = ()
     """the element kinds present (``forces.elements.kinds_of``): a type-level switch, so the
     compiled kernels contain only these kinds [T175]"""
+
+
+_SHARED_KINDS: ContextVar[tuple | None] = ContextVar("jointdyn_shared_kinds", default=None)
+
+
+@contextmanager
+def shared_kinds(*systems: System) -> Iterator[None]:
+    """Inside the block, every system is packed for the union of its own element kinds and those
+    of ``systems`` [T341]: a command that runs several models (e.g. a mechanism with ideal joints
+    and with a journal bearing) compiles one kernel set for them instead of one each. The
+    results are the same (a kind without elements is never entered); the kernels compiled are
+    the union's, so a later command running one of the models alone compiles its own set."""
+    from jointdyn.forces.elements import kinds_of, kinds_union
+
+    kinds = _SHARED_KINDS.get()
+    for s in systems:
+        own = kinds_of(s.fint)
+        kinds = own if kinds is None else kinds_union(kinds, own)
+    token = _SHARED_KINDS.set(kinds)
+    try:
+        yield
+    finally:
+        _SHARED_KINDS.reset(token)
 
 
 @dataclass(frozen=True)
@@ -81,7 +107,6 @@ class System:
 
     def packed(self, baumgarte: float = 0.0) -> Packed:
         """The arrays handed to the compiled kernels, with a fresh workspace."""
-        from jointdyn.forces.elements import kinds_of
         from jointdyn.multibody.dynamics import workspace_size
 
         ws = np.zeros(workspace_size(self.n, self.n_rows, self.fint.shape[0]))
@@ -96,8 +121,16 @@ class System:
             int(self.n_rows),
             np.array([float(baumgarte)]),
             ws,
-            kinds_of(self.fint),
+            self.kinds(),
         )
+
+    def kinds(self) -> tuple:
+        """The element kinds its kernels are compiled for: its own, joined with those of an
+        enclosing :func:`shared_kinds` block [T175, T341]."""
+        from jointdyn.forces.elements import kinds_of, kinds_union
+
+        own, shared = kinds_of(self.fint), _SHARED_KINDS.get()
+        return own if shared is None else kinds_union(own, shared)
 
     def degrees_of_freedom(self, t: float = 0.0) -> int:
         """n − rank Φ_q at the assembled state y0 (drivers count as constraints) [T286]."""
