@@ -39,6 +39,10 @@ from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_di
 from jointdyn.forces.contact_laws import NONE as NO_CONTACT
 from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_dispatch
 from jointdyn.forces.friction_laws import NONE as NO_FRICTION
+from jointdyn.forces.thermal import BASE as THERMAL_BASE
+from jointdyn.forces.thermal import MEMORY as THERMAL_MEMORY
+from jointdyn.forces.thermal import THERMAL_MODELS, VISC
+from jointdyn.forces.thermal import WIDTH as THERMAL_WIDTH
 from jointdyn.forces.transfer import apply_pair, pair_power
 
 JOURNAL = 1
@@ -56,9 +60,14 @@ REAL = Layout(
         "onset_tolerance",
         "min_impact_velocity",
     ),
-    blocks={"film": FILM_WIDTH, "contact": CONTACT_WIDTH, "friction": FRICTION_WIDTH},
+    blocks={
+        "film": FILM_WIDTH,
+        "contact": CONTACT_WIDTH,
+        "friction": FRICTION_WIDTH,
+        "thermal": THERMAL_WIDTH,
+    },
 )
-INT = Layout(HEADER + ("film", "contact", "friction", "table", "shear"))
+INT = Layout(HEADER + ("film", "contact", "friction", "table", "shear", "thermal"))
 OUTPUTS = {
     "ex": "m",
     "ey": "m",
@@ -73,12 +82,14 @@ OUTPUTS = {
     "power_exchanged": "W",
 }
 MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
+assert len(MEMORY) == THERMAL_BASE
 
 R_B, R_J, LEN, MU, CLR, H_ASP, ONSET_TOL, V_MIN = REAL.slots(*REAL.names[4:])
 FILM_P0, FILM_P1 = REAL.block("film").start, REAL.block("film").stop
 CONTACT_P0, CONTACT_P1 = REAL.block("contact").start, REAL.block("contact").stop
 FRICTION_P0, FRICTION_P1 = REAL.block("friction").start, REAL.block("friction").stop
-FILM, CONTACT, FRICTION, TABLE, SHEAR = INT.slots("film", "contact", "friction", "table", "shear")
+FILM, CONTACT, FRICTION, TABLE, SHEAR, THERMAL = INT.slots(*INT.names[3:])
+THERMAL_P0, THERMAL_P1 = REAL.block("thermal").start, REAL.block("thermal").stop
 IN_CONTACT, ONSET_VEL, IMPACTS, MAX_PEN = Layout(MEMORY).slots(*MEMORY)
 O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN, O_TORQUE, O_LOSS, O_EXCH = Layout(OUTPUTS).slots(
     *OUTPUTS
@@ -197,7 +208,9 @@ class ClearanceJoint:
         if film is not None and hasattr(film, "table"):
             tables.append(film.table(self.length, self.journal_radius))
             table = len(tables) - 1
+        thermal = getattr(self, "thermal", None)
         ints = {
+            "thermal": int(thermal is not None),
             "film": film.code if film is not None else NO_FILM,
             "contact": self.contact.code if self.contact is not None else NO_CONTACT,
             "friction": self.friction.code if self.friction is not None else NO_FRICTION,
@@ -219,6 +232,8 @@ class ClearanceJoint:
             for name, law in (("film", film), ("contact", self.contact), ("friction", self.friction))
             if law is not None
         }
+        if thermal is not None:
+            blocks["thermal"] = thermal.params()
         return ints, reals, blocks
 
 
@@ -258,14 +273,17 @@ class JournalBearing:
     """penetration at which a contact onset counts as resolved [m]"""
     min_impact_velocity: float = 1e-4
     """floor of the stored onset velocity δ̇⁻ [m/s]"""
+    thermal: object | None = None
+    """lumped oil temperature (``forces.thermal.LumpedOil``) [T310]; the film's viscosity then
+    follows μ(T) of its oil and ``viscosity`` is unused; None: constant ``viscosity``"""
     code: ClassVar[int] = JOURNAL
     centred: ClassVar[bool] = True
     REAL: ClassVar[Layout] = REAL
     INT: ClassVar[Layout] = INT
     OUTPUTS: ClassVar[dict[str, str]] = OUTPUTS
     """output columns written by the kernel (name -> unit), world frame, force on the journal"""
-    MEMORY: ClassVar[dict[str, str]] = MEMORY
-    """memory slots (name -> unit), changed only after accepted steps"""
+    MEMORY: ClassVar[dict[str, str]] = MEMORY | THERMAL_MEMORY
+    """memory slots (name -> unit), changed only after accepted steps (oil temperature [T311])"""
     STIFF: ClassVar[bool] = True
     """capability: the film makes the equations stiff (``solver="auto"`` then picks radau5 [T116])"""
     ORBIT: ClassVar[tuple[str, str]] = ("ex", "ey")
@@ -288,6 +306,10 @@ class JournalBearing:
     def validate(self):
         o = type(self).__name__
         ClearanceJoint.validate(self)
+        if self.thermal is not None:
+            if type(self.thermal) not in THERMAL_MODELS.values():
+                raise ValueError(f"{o}.thermal = {self.thermal!r}: valid: {sorted(THERMAL_MODELS)}")
+            self.thermal.validate()
         check_finite(o, "length", self.length, "m", "> 0", lambda v: v > 0)
         check_finite(o, "viscosity", self.viscosity, "Pa·s", "> 0", lambda v: v > 0)
         check_finite(
@@ -355,13 +377,14 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
     power = 0.0
     ffx = 0.0
     ffy = 0.0
+    mu_f = mem[VISC] if ip[THERMAL] != 0 else r[MU]  # μ(T) of the oil temperature [T311]
     if ip[FILM] != NO_FILM:
         xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
         xi_f = min(xi, xi_cap, XI_GUARD)
         xid = (ux * edx + uy * edy) / c
         xi_om = xi_f * (wj + wi) - 2.0 * (tx * edx + ty * edy) / c  # ξΩ [T14]
         fr, ft = film_dispatch(
-            laws, ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
+            laws, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
         )
         ffx = fr * ux + ft * tx
         ffy = fr * uy + ft * ty
@@ -374,7 +397,7 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
             # shear torques [T75]: M_J = −M_C − (e/2)F_t on the journal; on the bushing
             # M_C − (e/2)F_t with −F at the bushing centre, i.e. M_C + (e/2)F_t with −F through
             # the journal centre as applied above: the film exerts no net moment
-            mc = couette_torque(xi_f, r[MU], r[R_J], r[LEN], c, wj - wi)
+            mc = couette_torque(xi_f, mu_f, r[R_J], r[LEN], c, wj - wi)
             mj = -mc - 0.5 * e * ft
             mb = mc + 0.5 * e * ft
             if bj >= 0:
