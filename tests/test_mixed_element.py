@@ -103,3 +103,38 @@ def test_a_mechanism_runs_through_the_stribeck_minimum():
     assert torque[0] > 10 * torque[k] and torque[-1] > 1.5 * torque[k]
     b = Bearing(R, L, C, MU, GreenwoodTripp(SIGMA), flow=None)
     assert torque[-1] == pytest.approx(operating_point(b, W, 16.0)["friction_torque"], rel=0.01)
+
+
+@pytest.mark.parametrize(
+    "kw, message",
+    [
+        (dict(sigma=0.0), r"GreenwoodTrippContact.sigma = 0.0 \[m\]"),
+        (dict(sigma=1e-6, boundary_friction=1.5), r"boundary_friction = 1.5 \[-\]"),
+        (dict(sigma=1e-6, slip_speed=-1.0), r"slip_speed = -1.0 \[m/s\]"),
+    ],
+)
+def test_bad_asperity_input_names_the_parameter(kw, message):
+    with pytest.raises(ValueError, match=message):
+        JournalBearing("a", "A", "b", "B", R + C, R, L, MU, asperity=GreenwoodTrippContact(**kw)).validate()
+
+
+def test_asperity_in_a_model_file_round_trips():
+    from jointdyn.multibody.codec import decode_item, encode_value
+
+    el = JournalBearing(
+        "a", "A", "b", "B", R + C, R, L, MU, asperity=GreenwoodTrippContact(SIGMA, boundary_friction=0.12)
+    )
+    table = {
+        "type": "journal_bearing",
+        **{k: encode_value(v) for k, v in el.__dict__.items() if v is not None},
+    }
+    assert table["asperity"] == {
+        "law": "greenwood_tripp",
+        "sigma": SIGMA,
+        "eta_beta_sigma": 0.04,
+        "sigma_over_beta": 0.001,
+        "modulus": 1.1e11,
+        "boundary_friction": 0.12,
+        "slip_speed": 0.001,
+    }
+    assert decode_item("elements", table) == el
