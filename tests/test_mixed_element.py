@@ -81,6 +81,9 @@ def test_quasi_static_point_equals_the_steady_mixed_operating_point(speed):
     y0[0:2] = x * C
     res = simulate(rig, SimConfig(t_end=0.02, n_out=21), y0=y0)
     assert abs(res.element("bearing", "xi") - out["xi"]).max() < 1e-5
+    with pytest.raises(KeyError, match="no memory slot 'oil_temperature'"):  # no thermal state here
+        res.memory("bearing", "oil_temperature")
+    assert "bearing.memory.heat_generated" not in res.to_xarray()
 
 
 def test_a_mechanism_runs_through_the_stribeck_minimum():

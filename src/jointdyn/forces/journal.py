@@ -273,6 +273,10 @@ class JournalBearing:
     def _film(self):
         return film_model(self.film)
 
+    def memory_slots(self) -> dict[str, str]:
+        """The memory slots this bearing uses: the oil temperature's only with ``thermal``."""
+        return self.MEMORY if self.thermal is not None else MEMORY
+
     @classmethod
     def example(cls, film="alshaer2005"):
         """The benchmark's lubricated pin (c = 0.5 mm, L = 40 mm, μ = 0.4 Pa·s) between points
