@@ -154,7 +154,7 @@ def reference() -> list[str]:
         for name, sch in s[family].items():
             out += [f"#### `type = \"{name}\"` ({sch.cls.__name__})", "", _first_sentence(sch.cls.__doc__), ""]
             out += _table(sch, [("`type`", "string", "**required**", "—", f"`\"{name}\"`")])
-    for family in ("contact", "friction"):
+    for family in ("contact", "friction", "asperity", "thermal"):
         out += [f"### `{family} = {{ law = ..., ... }}`: {family} laws", ""]
         for name, sch in s[family].items():
             out += [f"#### `law = \"{name}\"` ({sch.cls.__name__})", "", _first_sentence(sch.cls.__doc__), ""]

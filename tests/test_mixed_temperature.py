@@ -3,6 +3,7 @@
 
 import csv
 import math
+from pathlib import Path
 
 import pytest
 from typer.testing import CliRunner
@@ -13,6 +14,7 @@ from jointdyn.cli import app
 from jointdyn.film.viscosity import MICROREYN, OILS, SAE, oil_by_name
 
 runner = CliRunner()
+DATA = Path(__file__).parent / "data"
 
 
 def test_walther_law_through_its_two_points_and_monotone():
@@ -109,3 +111,57 @@ def test_bearing_table_reports_the_effective_temperature():
     assert "t_eff = " in r.output and "delta_t = " in r.output
     r = runner.invoke(app, ["bearing-table", *a.split(), "--viscosity", "0.03"])
     assert r.exit_code == 2 and "not both" in r.output
+
+
+def _textbook_case():
+    rows = [r for r in open(DATA / "shigley_effective_temperature.csv") if not r.startswith("#")]
+    return next(csv.DictReader(rows))
+
+
+def _chart_procedure(g, oil, t_in):
+    """The textbook's hand iteration with the Raimondi–Boyd l/d = 1 table (log–log interpolation in
+    S) and Shigley's SI heat balance ΔT = 8.30·P[MPa]·(r/c)f/((1 − ½Q_s/Q)·Q/(rcNl)) [T276]."""
+    import numpy as np
+    from scipy.optimize import brentq
+
+    rb = [r for r in open(DATA / "raimondi_boyd_1958.csv") if not r.startswith("#")]
+    tab = sorted((r for r in csv.DictReader(rb) if r["ld"] == "1"), key=lambda r: float(r["sommerfeld"]))
+    lnS = np.log([float(r["sommerfeld"]) for r in tab])
+
+    def col(name, S):
+        return float(np.exp(np.interp(math.log(S), lnS, np.log([float(r[name]) for r in tab]))))
+
+    P = g["load"] / (2 * g["radius"] * g["length"])
+
+    def residual(t):
+        S = (g["radius"] / g["clearance"]) ** 2 * oil.viscosity(t) * g["speed"] / P
+        x = col("friction_variable", S) / ((1 - 0.5 * col("side_flow_ratio", S)) * col("flow_variable", S))
+        return t - t_in - 0.5 * 8.30 * P / 1e6 * x
+
+    return brentq(residual, t_in, t_in + 80.0, xtol=1e-9)
+
+
+def test_textbook_effective_temperature_within_2_K():
+    row = _textbook_case()
+    g = dict(
+        load=float(row["load_N"]),
+        speed=float(row["speed_rps"]),
+        radius=float(row["radius_m"]),
+        length=float(row["length_m"]),
+        clearance=float(row["clearance_m"]),
+    )
+    oil, t_in = oil_by_name(row["oil"]), float(row["inlet_temp_C"])
+    op = effective_temperature(**g, oil=oil, inlet_temp=t_in)  # finite Reynolds film [T277]
+    assert abs(op["t_eff"] - float(row["t_eff_C"])) < 2.0  # measured: 67.07 vs 67.1 °C
+    assert op["sommerfeld"] == pytest.approx(float(row["sommerfeld"]), rel=0.02)
+    assert op["viscosity"] == pytest.approx(float(row["viscosity_Pas"]), rel=0.02)
+    # the same procedure by hand from the Raimondi–Boyd table (the book's charts): 67.0 °C
+    assert abs(op["t_eff"] - _chart_procedure(g, oil, t_in)) < 2.0
+    # and through the command line
+    a = (
+        f"--ld 1 --eps 0.5 --load {g['load']} --speed {g['speed']} --radius {g['radius']}"
+        f" --clearance {g['clearance']} --oil {row['oil']} --inlet-temp {t_in}"
+    )
+    r = runner.invoke(app, ["bearing-table", *a.split()])
+    assert r.exit_code == 0, r.output
+    assert f"t_eff = {op['t_eff']:.2f}" in r.output

@@ -41,6 +41,7 @@ class Bearing:
     flow                       :class:`~jointdyn.film.flow_factors.AverageFlow` or None (smooth film)
     boundary_friction          f_b ≥ 0 [-]
     slip_speed                 v_s > 0 [m/s], regularisation speed of the boundary friction
+    pressure_viscosity         Barus α ≥ 0 [1/Pa], μ = μ₀e^{αp} (0: isoviscous) [T317]
     """
 
     radius: float
@@ -51,6 +52,7 @@ class Bearing:
     flow: object = None
     boundary_friction: float = 0.1
     slip_speed: float = 1e-3
+    pressure_viscosity: float = 0.0
 
     def __post_init__(self):
         for name, v, unit in (
@@ -65,12 +67,16 @@ class Bearing:
         f = self.boundary_friction
         if not (math.isfinite(f) and 0.0 <= f <= 1.0):
             raise ValueError(f"boundary_friction = {f!r} [-]: must be in [0, 1]")
+        a = self.pressure_viscosity
+        if not (math.isfinite(a) and 0.0 <= a <= 1e-7):
+            raise ValueError(f"pressure_viscosity = {a!r} [1/Pa]: must be in [0, 1e-7] (oils: 1e-8 … 3e-8)")
 
 
 def _state(b: Bearing, eps: float, omega: float, mesh, warm):
     """Dimensional forces [N] and torque parts at ε (journal speed ω [rad/s])."""
     R, L, c = b.radius, b.length, b.clearance
-    d = mixed_steady(eps, L / (2.0 * R), b.flow, "reynolds", mesh, warm)
+    barus = b.pressure_viscosity * 6.0 * b.viscosity * omega * R**2 / c**2  # [T70, T317]
+    d = mixed_steady(eps, L / (2.0 * R), b.flow, "reynolds", mesh, warm, barus)
     fs = b.viscosity * omega * R**4 / c**2
     a = asperity_load(b.contact, eps, R, L, c, d["theta"], d["weights"])
     Fr, Ft = fs * d["Fr"] + a["F_r"], fs * d["Ft"] + a["F_t"]
@@ -85,6 +91,31 @@ def _state(b: Bearing, eps: float, omega: float, mesh, warm):
         "hydro_torque": fs * c * d["torque"],
         "cavitated": d["cavitated"],
     }
+
+
+def _barus_limit(total, lo: float, hi: float, load: float) -> float:
+    """The largest u ≤ hi where the Barus film exists (bisection to 10⁻⁶ in u), or hi; ValueError
+    naming the load if the film cannot carry it there [T317]."""
+
+    def ok(u):
+        try:
+            return total(u)
+        except ValueError:
+            return None
+
+    if ok(hi) is not None:
+        return hi
+    a, z = lo, hi
+    while z - a > 1e-6:
+        m = 0.5 * (a + z)
+        a, z = (m, z) if ok(m) is not None else (a, m)
+    cap = ok(a)
+    if cap is not None and cap < load:
+        raise ValueError(
+            f"load = {load!r} [N]: beyond the Barus film's range (it carries {cap:.4g} N where "
+            f"α·p_iso,max reaches 1, eps = {1 - math.exp(-a):.4f}); reduce pressure_viscosity or the load"
+        )
+    return a
 
 
 def operating_point(b: Bearing, load: float, speed: float, mesh=DEFAULT_MESH) -> dict:
@@ -109,6 +140,8 @@ def operating_point(b: Bearing, load: float, speed: float, mesh=DEFAULT_MESH) ->
         return s["total"]
 
     lo, hi = 1e-4, -math.log(1.0 - EPS_MAX)
+    if b.pressure_viscosity > 0.0:  # the Barus film exists up to α·p_iso,max < 1 [T317]
+        hi = _barus_limit(total, lo, hi, load)
     top = total(hi)
     if top < load:
         raise ValueError(

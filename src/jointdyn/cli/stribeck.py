@@ -67,6 +67,7 @@ def stribeck_cmd(
     sigma_over_beta: float = typer.Option(1e-3, help="Greenwood–Tripp σ/β (-)"),
     modulus: float = typer.Option(1.1e11, help="composite modulus E' in Pa"),
     boundary_friction: float = typer.Option(0.1, help="boundary friction coefficient f_b (-)"),
+    pressure_viscosity: float = typer.Option(0.0, help="Barus pressure–viscosity α in 1/Pa (0: isoviscous)"),
     gamma: float = typer.Option(1.0, help="Peklenik surface orientation γ: 1/9,1/6,1/3,1,3,6,9"),
     flow_factors: bool = typer.Option(True, help="Patir–Cheng average film (--no-flow-factors: smooth film)"),
     mesh: str = typer.Option("144,16", help="finite-volume mesh NT,NZ"),
@@ -97,7 +98,8 @@ def stribeck_cmd(
         s1, s2 = _pair(roughness, "roughness")
         gt = GreenwoodTripp(composite_sigma(s1, s2), eta_beta_sigma, sigma_over_beta, modulus)
         flow = AverageFlow.of(s1, s2, clearance, gamma) if flow_factors else None
-        b = Bearing(radius, length, clearance, viscosity, gt, flow, boundary_friction)
+        fb = boundary_friction
+        b = Bearing(radius, length, clearance, viscosity, gt, flow, fb, pressure_viscosity=pressure_viscosity)
         tab = stribeck(b, load, _speeds(speeds), _mesh(mesh))
         buf = io.StringIO()
         w = csv.writer(buf)

@@ -21,8 +21,28 @@ from jointdyn.film.cavitation import condition
 from jointdyn.film.fv import DEFAULT_MESH, assemble, check_ld, check_xi
 
 
+def barus_pressure(q, barus: float):
+    """Pressure P and viscosity ratio μ/μ₀ = e^{ᾱP} of the Barus film from the isoviscous reduced
+    pressure q (P = −ln(1 − ᾱq)/ᾱ) [T317]; ValueError unless ᾱ·max q < 1."""
+    q = np.asarray(q, dtype=float)
+    m = barus * float(q.max(initial=0.0))
+    if not m < 1.0:
+        raise ValueError(
+            f"pressure_viscosity: α·p_iso,max = {m:.3g} >= 1: the Barus film has no finite pressure "
+            "here (Barus holds for moderate pressures only) [T317]"
+        )
+    r = 1.0 - barus * q
+    return -np.log(r) / barus, 1.0 / r
+
+
 def mixed_steady(
-    eps: float, ld: float, flow=None, cavitation: str = "reynolds", mesh=DEFAULT_MESH, cavitated=None
+    eps: float,
+    ld: float,
+    flow=None,
+    cavitation: str = "reynolds",
+    mesh=DEFAULT_MESH,
+    cavitated=None,
+    barus: float = 0.0,
 ):
     """Nondimensional steady film at eccentricity ratio ε [T268–T269].
 
@@ -30,6 +50,8 @@ def mixed_steady(
     ld          L/D > 0 [-]
     flow        :class:`~jointdyn.film.flow_factors.AverageFlow` (average Reynolds film) or None
     cavitation  a registered condition (:mod:`.cavitation`)
+    barus       ᾱ = α·6μ₀ωR²/c² ≥ 0 [-], Barus pressure–viscosity α [1/Pa] in the pressure unit of
+                [T70] (0: isoviscous) [T317]
     Returns dict: Fr, Ft [μωR⁴/c²], torque T̄ [μωR⁴/c], couette (its Couette part), theta (nt,)
     [rad] and weights (nt,) [rad] (θ quadrature), cavitated (warm start), residual, iterations.
     """
@@ -41,6 +63,9 @@ def mixed_steady(
     fixed[:nz] = True  # supply line θ = 0
     s = condition(cavitation).solve(prob, 0.0, eps / (2.0 + eps * eps), fixed, cavitated)
     P = s.P.reshape(nt, nz)
+    visc = None
+    if barus > 0.0:  # reduced pressure → Barus pressure and viscosity ratio [T317]
+        P, visc = barus_pressure(P, barus)
     th = prob.theta
     ds = 2.0 * math.pi / nt
     wt = ds * prob.dtheta  # θ weights
@@ -53,6 +78,8 @@ def mixed_steady(
     else:
         fc, fp = flow.shear_factors(H)
     couette = float(np.sum(wt * fc / H) * 2.0 * ld)
+    if visc is not None:  # the Couette shear with μ(p) where the film carries pressure [T317]
+        couette += float(np.sum(2.0 * prob.area.reshape(nt, nz) * (fc / H)[:, None] * (visc - 1.0)))
     dPds = (np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)) / (2.0 * ds)  # periodic, P = 0 at θ = 0
     poiseuille = float(np.sum((3.0 * fp * H * ds)[:, None] * dPds * 2.0 * prob.cv[None, :]))
     return {

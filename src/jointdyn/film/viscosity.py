@@ -18,6 +18,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from numba import njit
+
 #: ISO VG grade → (ν₄₀, ν₁₀₀) [mm²/s]
 ISO_VG = {
     22: (22.0, 4.5),
@@ -122,6 +124,27 @@ class Oil:
         if f(hi) > 0.0:
             return hi
         return brentq(f, lo, hi, xtol=1e-10)
+
+
+WALTHER, VOGEL = 0, 1  # law kinds of :func:`law_params`
+
+
+def law_params(oil: Oil) -> tuple[float, ...]:
+    """The oil's viscosity law as (kind, p1, p2, p3, ρ₁₅, α) for :func:`viscosity_of` [T273–T274]:
+    Walther (A, B, 0), Vogel (a, b, c)."""
+    if isinstance(oil.law, Walther):
+        A, B = oil.law._AB()
+        return (float(WALTHER), A, B, 0.0, oil.density15, oil.expansion)
+    return (float(VOGEL), oil.law.a, oil.law.b, oil.law.c, oil.density15, oil.expansion)
+
+
+@njit(cache=True)
+def viscosity_of(p, t):
+    """μ [Pa·s] at t [°C] of the law ``p`` = :func:`law_params` (compiled; no range check)."""
+    if p[0] == VOGEL:
+        return p[1] * math.exp(p[2] / (t + p[3]))
+    nu = 10.0 ** (10.0 ** (p[1] - p[2] * math.log10(t + 273.15))) - 0.7  # [mm²/s]
+    return p[4] * (1.0 - p[5] * (t - 15.0)) * nu * 1e-6
 
 
 def _registry() -> dict[str, Oil]:

@@ -20,6 +20,7 @@ from jointdyn.forces.contact_laws import KELVIN_VOIGT, contact_jac_dispatch
 from jointdyn.forces.elements import NOUT, eval_forces
 from jointdyn.forces.friction_laws import friction_jac_dispatch
 from jointdyn.forces.journal import (
+    ASPERITY,
     CLR,
     CONTACT,
     CONTACT_P0,
@@ -43,7 +44,9 @@ from jointdyn.forces.journal import (
     R_J,
     SHEAR,
     TABLE,
+    THERMAL,
     V_MIN,
+    VISC,
     XI_GUARD,
     journal_kinematics,
 )
@@ -72,7 +75,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = np.sqrt(ex * ex + ey * ey)
-    if e == 0.0:
+    if e == 0.0 or ip[ASPERITY] != 0:  # asperity tables [T315]: differenced
         return 1
     ux = ex / e
     uy = ey / e
@@ -106,6 +109,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     F = np.empty(2)
     DF = np.empty((2, 12))
     xi = e / c
+    mu_f = mem[VISC] if ip[THERMAL] != 0 else r[MU]  # μ(T) frozen between accepted steps [T311]
     if ip[FILM] != NO_FILM:
         xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
         xi_f = min(xi, xi_cap, XI_GUARD)
@@ -115,7 +119,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
         Dxid = (te * tde / e + uded) / c
         DX = Dxi * (wj + wi) + xi_f * Dwsum - 2.0 * (-ue * tde / e + tded) / c
         fr, ft, frx, fra, fro, ftx, fta, fto = film_jac_dispatch(
-            laws, ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
+            laws, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
         )
         Dfr = frx * Dxi + fra * Dxid + fro * DX
         Dft = ftx * Dxi + fta * Dxid + fto * DX
@@ -129,7 +133,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
         if ip[SHEAR] != 0:
             # shear torques M_J = −M_C − (e/2)F_t, M_B' = M_C + (e/2)F_t with
             # M_C = K(ω_J − ω_B)/√(1−ξ_f²), K = 2πμR³L/c [T75]
-            kc = 2.0 * np.pi * r[MU] * r[R_J] ** 3 * r[LEN] / c
+            kc = 2.0 * np.pi * mu_f * r[R_J] ** 3 * r[LEN] / c
             sq = np.sqrt((1.0 - xi_f) * (1.0 + xi_f))
             dw = wj - wi
             Dmc = kc * dw * xi_f / sq**3 * Dxi

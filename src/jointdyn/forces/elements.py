@@ -12,9 +12,9 @@ declarations over ``FORCE_ELEMENTS``.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+from numba import njit, types
 
-from jointdyn.core.dispatch import identity, law_tuple
+from jointdyn.core.dispatch import generated, generated_overload, identity, law_tuple
 from jointdyn.core.layout import BODY_I, BODY_J, TYPE
 from jointdyn.film.models import FILM_MODELS
 from jointdyn.forces.contact_laws import CONTACT_LAWS
@@ -27,8 +27,12 @@ from jointdyn.forces.journal import (
     IN_CONTACT,
     JOURNAL,
     MAX_PEN,
+    O_LOSS,
     ONSET_TOL,
     ONSET_VEL,
+    THERMAL,
+    THERMAL_P0,
+    THERMAL_P1,
     V_MIN,
     ClearanceJoint,
     JournalBearing,
@@ -40,6 +44,7 @@ from jointdyn.forces.kinds import kind_gate, kind_loop, kinds_tuple
 from jointdyn.forces.springs import SPRING_DAMPER, SpringDamper, spring_damper
 from jointdyn.forces.tabulated import TABLE as TAB_TABLE
 from jointdyn.forces.tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
+from jointdyn.forces.thermal import thermal_step, thermal_step_limit
 from jointdyn.forces.torsion import (
     HARMONIC_TORQUE,
     TORSION_SPRING,
@@ -63,6 +68,7 @@ NMEM = max([1, *(len(cls.MEMORY) for cls in FORCE_ELEMENTS.values())])
 NOUT = max(len(cls.OUTPUTS) for cls in FORCE_ELEMENTS.values())
 
 FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law (+ element index)
+THERMAL_RANGE = 1_000_000  # status: a bearing's oil temperature left its viscosity law (+ element index)
 
 
 # One compiled kernel per element code. A kernel with the element signature
@@ -139,11 +145,28 @@ def eval_forces(t, q, qd, mem, fint, freal, tables, Q, out, kinds=None):
     _force_loop(kinds, t, q, qd, mem, fint, freal, tables, Q, out)
 
 
+def _build_journal_kind(kinds):
+    expr = f"kinds[{JOURNAL}]" if isinstance(kinds, types.BaseTuple) else "None"
+    return generated("journal_kind", ["def journal_kind(kinds):", f"    return {expr}"], {})
+
+
+_journal_kind = generated_overload("journal_kind", "kinds", _build_journal_kind)  # its laws [T229]
+
+
 @njit(inline="always")
-def _journal_memory(t, q, qd, mem, fint, freal, tables):
+def _journal_memory(t, q, qd, mem, fint, freal, tables, kinds):
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL:
             continue
+        if fint[k, THERMAL] != 0:  # the film's loss at the accepted state heats the oil [T311]
+            scratch = np.zeros(q.shape[0])
+            out = np.zeros(NOUT)
+            bi, bj = fint[k, BODY_I], fint[k, BODY_J]
+            journal_element(
+                q, qd, mem[k], bi, bj, fint[k], freal[k], tables, scratch, out, _journal_kind(kinds)
+            )
+            if thermal_step(mem[k], freal[k, THERMAL_P0:THERMAL_P1], t, out[O_LOSS]) != 0:
+                return THERMAL_RANGE + k
         delta, dd = penetration(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k])
         if fint[k, CONTACT] == _NO_CONTACT:
             if delta >= 0.0:  # ξ ≥ 1 with no contact law (c_c = c here)
@@ -178,6 +201,8 @@ def _journal_onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
 def _journal_step_limit(q, qd, mem, fint, freal):
     h = 1e300
     for k in range(fint.shape[0]):
+        if fint[k, TYPE] == JOURNAL and fint[k, THERMAL] != 0:
+            h = min(h, thermal_step_limit(mem[k], freal[k, THERMAL_P0:THERMAL_P1]))
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == _NO_CONTACT or mem[k, IN_CONTACT] > 0.5:
             continue
         delta, dd = penetration(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k])
@@ -188,7 +213,7 @@ def _journal_step_limit(q, qd, mem, fint, freal):
 
 # The accepted-step hooks of journal elements, compiled only for a model that has one [T175].
 _memory_gate = kind_gate(
-    "memory_gate", JOURNAL, _journal_memory, ("t", "q", "qd", "mem", "fint", "freal", "tables"), "0"
+    "memory_gate", JOURNAL, _journal_memory, ("t", "q", "qd", "mem", "fint", "freal", "tables", "kinds_"), "0"
 )
 _onset_gate = kind_gate(
     "onset_gate", JOURNAL, _journal_onset_fraction, ("q0", "qd0", "q1", "qd1", "mem", "fint", "freal"), "1.0"
@@ -200,10 +225,10 @@ _step_gate = kind_gate(
 
 @njit(cache=True)
 def advance_memory(t, q, qd, mem, fint, freal, tables, kinds=None):
-    """After an accepted step: record contact onsets (δ̇⁻) and separations [T16]; stop on
-    film breakdown. Returns 0 or FILM_BREAKDOWN + element index. ``kinds`` as in
-    :func:`eval_forces`."""
-    return _memory_gate(kinds, t, q, qd, mem, fint, freal, tables)
+    """After an accepted step: record contact onsets (δ̇⁻) and separations [T16]; advance oil
+    temperatures [T311]; stop on film breakdown. Returns 0, FILM_BREAKDOWN or THERMAL_RANGE +
+    element index. ``kinds`` as in :func:`eval_forces`."""
+    return _memory_gate(kinds, t, q, qd, mem, fint, freal, tables, kinds)
 
 
 @njit(cache=True)
@@ -216,7 +241,8 @@ def onset_fraction(q0, qd0, q1, qd1, mem, fint, freal, kinds=None):
 @njit(cache=True)
 def step_limit(q, qd, mem, fint, freal, kinds=None):
     """Largest step that cannot carry a free journal through its gap at the current approach
-    speed [s]: (gap + tol)/δ̇ for elements not in contact (inf if none)."""
+    speed [s]: (gap + tol)/δ̇ for elements not in contact, and the oil temperature's step limit
+    [T312] (inf if none)."""
     return _step_gate(kinds, q, qd, mem, fint, freal)
 
 
@@ -238,6 +264,9 @@ def element_tables(elements, body_index, point_of):
         pj = point_of(e.body_j, e.point_j) if e.point_j is not None else (0.0, 0.0)  # couples: no point
         points = {"xi_i": pi[0], "eta_i": pi[1], "xi_j": pj[0], "eta_j": pj[1]}
         cls.REAL.pack(freal[k], {**points, **reals}, blocks)
+        m0 = getattr(e, "thermal", None)
+        for name, v in (m0.memory0() if m0 is not None else {}).items():  # initial memory [T311]
+            mem0[k, list(cls.MEMORY).index(name)] = v
     rows = max(t.shape[0] for t in tabs)
     tables = np.zeros((len(tabs), rows, 2))
     for i, t in enumerate(tabs):

@@ -30,7 +30,7 @@ from typing import ClassVar
 from numba import njit
 
 from jointdyn.core.kinematics import body_state, point_kinematics
-from jointdyn.core.layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout, check_finite, params_of
+from jointdyn.core.layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout, check_finite
 from jointdyn.errors import PhysicsWarning
 from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_dispatch, film_model, film_name
 from jointdyn.film.models import NONE as NO_FILM
@@ -39,6 +39,13 @@ from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_di
 from jointdyn.forces.contact_laws import NONE as NO_CONTACT
 from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_dispatch
 from jointdyn.forces.friction_laws import NONE as NO_FRICTION
+from jointdyn.forces.journal_pack import pack_journal
+from jointdyn.forces.mixed import ASPERITY_MODELS, asperity_loads
+from jointdyn.forces.mixed import WIDTH as ASPERITY_WIDTH
+from jointdyn.forces.thermal import BASE as THERMAL_BASE
+from jointdyn.forces.thermal import MEMORY as THERMAL_MEMORY
+from jointdyn.forces.thermal import THERMAL_MODELS, VISC
+from jointdyn.forces.thermal import WIDTH as THERMAL_WIDTH
 from jointdyn.forces.transfer import apply_pair, pair_power
 
 JOURNAL = 1
@@ -56,9 +63,15 @@ REAL = Layout(
         "onset_tolerance",
         "min_impact_velocity",
     ),
-    blocks={"film": FILM_WIDTH, "contact": CONTACT_WIDTH, "friction": FRICTION_WIDTH},
+    blocks={
+        "film": FILM_WIDTH,
+        "contact": CONTACT_WIDTH,
+        "friction": FRICTION_WIDTH,
+        "thermal": THERMAL_WIDTH,
+        "asperity": ASPERITY_WIDTH,
+    },
 )
-INT = Layout(HEADER + ("film", "contact", "friction", "table", "shear"))
+INT = Layout(HEADER + ("film", "contact", "friction", "table", "shear", "thermal", "asperity"))
 OUTPUTS = {
     "ex": "m",
     "ey": "m",
@@ -73,12 +86,15 @@ OUTPUTS = {
     "power_exchanged": "W",
 }
 MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
+assert len(MEMORY) == THERMAL_BASE
 
 R_B, R_J, LEN, MU, CLR, H_ASP, ONSET_TOL, V_MIN = REAL.slots(*REAL.names[4:])
 FILM_P0, FILM_P1 = REAL.block("film").start, REAL.block("film").stop
 CONTACT_P0, CONTACT_P1 = REAL.block("contact").start, REAL.block("contact").stop
 FRICTION_P0, FRICTION_P1 = REAL.block("friction").start, REAL.block("friction").stop
-FILM, CONTACT, FRICTION, TABLE, SHEAR = INT.slots("film", "contact", "friction", "table", "shear")
+FILM, CONTACT, FRICTION, TABLE, SHEAR, THERMAL, ASPERITY = INT.slots(*INT.names[3:])
+ASP_P0 = REAL.block("asperity").start
+THERMAL_P0, THERMAL_P1 = REAL.block("thermal").start, REAL.block("thermal").stop
 IN_CONTACT, ONSET_VEL, IMPACTS, MAX_PEN = Layout(MEMORY).slots(*MEMORY)
 O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN, O_TORQUE, O_LOSS, O_EXCH = Layout(OUTPUTS).slots(
     *OUTPUTS
@@ -190,36 +206,8 @@ class ClearanceJoint:
         return cls("a", "A", "b", "B", 0.0105, 0.0100, contact=LankaraniNikravesh.example())
 
     def pack(self, tables: list, body_index) -> tuple[dict, dict, dict]:
-        """Element-specific slots (ints, reals, blocks) of the declared layouts; film tables are
-        appended to ``tables`` and referenced by index."""
-        film = self._film()
-        table = 0
-        if film is not None and hasattr(film, "table"):
-            tables.append(film.table(self.length, self.journal_radius))
-            table = len(tables) - 1
-        ints = {
-            "film": film.code if film is not None else NO_FILM,
-            "contact": self.contact.code if self.contact is not None else NO_CONTACT,
-            "friction": self.friction.code if self.friction is not None else NO_FRICTION,
-            "table": table,
-            "shear": int(getattr(self, "shear", False)),
-        }
-        reals = {
-            "bearing_radius": self.bearing_radius,
-            "journal_radius": self.journal_radius,
-            "length": getattr(self, "length", 0.0),
-            "viscosity": getattr(self, "viscosity", 0.0),
-            "clearance": self.clearance,
-            "asperity_height": getattr(self, "asperity_height", 0.0),
-            "onset_tolerance": self.onset_tolerance,
-            "min_impact_velocity": self.min_impact_velocity,
-        }
-        blocks = {
-            name: params_of(law)
-            for name, law in (("film", film), ("contact", self.contact), ("friction", self.friction))
-            if law is not None
-        }
-        return ints, reals, blocks
+        """Element-specific slots (ints, reals, blocks) of the declared layouts [T14–T16]."""
+        return pack_journal(self, tables, body_index)
 
 
 @dataclass(frozen=True)
@@ -258,14 +246,20 @@ class JournalBearing:
     """penetration at which a contact onset counts as resolved [m]"""
     min_impact_velocity: float = 1e-4
     """floor of the stored onset velocity δ̇⁻ [m/s]"""
+    asperity: object | None = None
+    """Greenwood–Tripp asperity contact in parallel with the film, with boundary friction
+    (``forces.mixed.GreenwoodTrippContact``) [T314]; None: smooth surfaces"""
+    thermal: object | None = None
+    """lumped oil temperature (``forces.thermal.LumpedOil``) [T310]; the film's viscosity then
+    follows μ(T) of its oil and ``viscosity`` is unused; None: constant ``viscosity``"""
     code: ClassVar[int] = JOURNAL
     centred: ClassVar[bool] = True
     REAL: ClassVar[Layout] = REAL
     INT: ClassVar[Layout] = INT
     OUTPUTS: ClassVar[dict[str, str]] = OUTPUTS
     """output columns written by the kernel (name -> unit), world frame, force on the journal"""
-    MEMORY: ClassVar[dict[str, str]] = MEMORY
-    """memory slots (name -> unit), changed only after accepted steps"""
+    MEMORY: ClassVar[dict[str, str]] = MEMORY | THERMAL_MEMORY
+    """memory slots (name -> unit), changed only after accepted steps (oil temperature [T311])"""
     STIFF: ClassVar[bool] = True
     """capability: the film makes the equations stiff (``solver="auto"`` then picks radau5 [T116])"""
     ORBIT: ClassVar[tuple[str, str]] = ("ex", "ey")
@@ -279,6 +273,10 @@ class JournalBearing:
     def _film(self):
         return film_model(self.film)
 
+    def memory_slots(self) -> dict[str, str]:
+        """The memory slots this bearing uses: the oil temperature's only with ``thermal``."""
+        return self.MEMORY if self.thermal is not None else MEMORY
+
     @classmethod
     def example(cls, film="alshaer2005"):
         """The benchmark's lubricated pin (c = 0.5 mm, L = 40 mm, μ = 0.4 Pa·s) between points
@@ -288,6 +286,12 @@ class JournalBearing:
     def validate(self):
         o = type(self).__name__
         ClearanceJoint.validate(self)
+        for field, registry in (("thermal", THERMAL_MODELS), ("asperity", ASPERITY_MODELS)):
+            v = getattr(self, field)
+            if v is not None:
+                if type(v) not in registry.values():
+                    raise ValueError(f"{o}.{field} = {v!r}: valid: {sorted(registry)}")
+                v.validate()
         check_finite(o, "length", self.length, "m", "> 0", lambda v: v > 0)
         check_finite(o, "viscosity", self.viscosity, "Pa·s", "> 0", lambda v: v > 0)
         check_finite(
@@ -355,16 +359,22 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
     power = 0.0
     ffx = 0.0
     ffy = 0.0
+    mu_f = mem[VISC] if ip[THERMAL] != 0 else r[MU]  # μ(T) of the oil temperature [T311]
     if ip[FILM] != NO_FILM:
         xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
         xi_f = min(xi, xi_cap, XI_GUARD)
         xid = (ux * edx + uy * edy) / c
         xi_om = xi_f * (wj + wi) - 2.0 * (tx * edx + ty * edy) / c  # ξΩ [T14]
         fr, ft = film_dispatch(
-            laws, ip[FILM], xi_f, xid, xi_om, r[MU], r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
+            laws, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
         )
-        ffx = fr * ux + ft * tx
-        ffy = fr * uy + ft * ty
+        fa = 0.0
+        tb = 0.0
+        if ip[ASPERITY] != 0:  # asperities in parallel with the film, boundary friction [T314]
+            fa, wa = asperity_loads(xi, tables[ip[ASPERITY]], tables[ip[ASPERITY] + 1])
+            tb = r[R_J] * r[ASP_P0] * math.tanh((wj - wi) * r[R_J] / r[ASP_P0 + 1]) * wa
+        ffx = (fr + fa) * ux + ft * tx
+        ffy = (fr + fa) * uy + ft * ty
         # film force at the journal centre, reaction through the same point [T8, T15]
         apply_pair(Q, bi, bj, ffx, ffy, sjx, sjy, six + ex, siy + ey)
         film_power = pair_power(qd, bi, bj, ffx, ffy, sjx, sjy, six + ex, siy + ey)
@@ -374,7 +384,7 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
             # shear torques [T75]: M_J = −M_C − (e/2)F_t on the journal; on the bushing
             # M_C − (e/2)F_t with −F at the bushing centre, i.e. M_C + (e/2)F_t with −F through
             # the journal centre as applied above: the film exerts no net moment
-            mc = couette_torque(xi_f, r[MU], r[R_J], r[LEN], c, wj - wi)
+            mc = couette_torque(xi_f, mu_f, r[R_J], r[LEN], c, wj - wi)
             mj = -mc - 0.5 * e * ft
             mb = mc + 0.5 * e * ft
             if bj >= 0:
@@ -386,6 +396,14 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
             out[O_TORQUE] = mj
         else:
             out[O_TORQUE] = 0.0
+        if tb != 0.0:  # boundary friction couple [T270, T314]
+            if bj >= 0:
+                Q[3 * bj + 2] -= tb
+            if bi >= 0:
+                Q[3 * bi + 2] += tb
+            film_power += tb * (wi - wj)
+            loss += tb * (wj - wi)
+            out[O_TORQUE] -= tb
         out[O_LOSS] = loss
         out[O_EXCH] = -film_power - loss  # 0 unless ξ > ξ_cap or shear = false [T282]
         power += film_power

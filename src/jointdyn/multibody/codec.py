@@ -34,9 +34,17 @@ from jointdyn.film.models import FILM_MODELS
 from jointdyn.forces.contact_laws import CONTACT_LAWS
 from jointdyn.forces.elements import FORCE_ELEMENTS
 from jointdyn.forces.friction_laws import FRICTION_LAWS
+from jointdyn.forces.mixed import ASPERITY_MODELS
+from jointdyn.forces.thermal import THERMAL_MODELS
 
 #: fields that hold a law *instance*, written as ``{ law = "<name>", ...fields }``
-LAW_FIELDS = {"contact": CONTACT_LAWS, "friction": FRICTION_LAWS, "film": FILM_MODELS}
+LAW_FIELDS = {
+    "contact": CONTACT_LAWS,
+    "friction": FRICTION_LAWS,
+    "film": FILM_MODELS,
+    "thermal": THERMAL_MODELS,
+    "asperity": ASPERITY_MODELS,
+}
 #: the item families of a model: table name -> registry
 FAMILIES = {"joints": CONSTRAINTS, "elements": FORCE_ELEMENTS}
 #: the tables of the model part of a document, in file order

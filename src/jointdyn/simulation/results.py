@@ -40,6 +40,11 @@ def _version() -> str:
         return "unknown"
 
 
+def _memory_slots(e) -> dict:
+    """Memory slots element ``e`` uses: its ``memory_slots()`` if declared, else its ``MEMORY``."""
+    return e.memory_slots() if hasattr(e, "memory_slots") else type(e).MEMORY
+
+
 @dataclass
 class Results:
     """One run. Arrays are **time-first** (row i belongs to ``t[i]``; scipy's ``sol.y`` is the
@@ -110,8 +115,8 @@ class Results:
         """Time series of memory slot ``slot`` of force element ``name`` (see the element
         class's ``MEMORY``), as stored at the output samples."""
         k, cls = self._element(name)
-        if slot not in cls.MEMORY:
-            valid = list(cls.MEMORY)
+        if slot not in _memory_slots(self.system.elements[k]):
+            valid = list(_memory_slots(self.system.elements[k]))
             raise KeyError(f"element {name!r} ({cls.__name__}) has no memory slot {slot!r}; valid: {valid}")
         return self.mem[:, k, list(cls.MEMORY).index(slot)]
 
@@ -262,8 +267,10 @@ class Results:
         for k, (n, e) in enumerate(zip(s.element_names, s.elements)):
             for j, (o, u) in enumerate(type(e).OUTPUTS.items()):
                 v[f"{n}.{o}"] = (self.eout[:, k, j], u)
+            used = _memory_slots(e)
             for j, (o, u) in enumerate(type(e).MEMORY.items()):
-                v[f"{n}.memory.{o}"] = (self.mem[:, k, j], u)
+                if o in used and j < self.mem.shape[-1]:
+                    v[f"{n}.memory.{o}"] = (self.mem[:, k, j], u)
         v["drift_position"] = (self.drift[:, 0], "m or rad")
         v["drift_velocity"] = (self.drift[:, 1], "m/s or rad/s")
         ds = xr.Dataset({k: ("time", a) for k, (a, _) in v.items()}, coords={"time": self.t})
@@ -280,7 +287,8 @@ class Results:
         ds = self.to_xarray()
         if element is not None:
             k, cls = self._element(element)
-            names = [f"{element}.{o}" for o in cls.OUTPUTS] + [f"{element}.memory.{o}" for o in cls.MEMORY]
+            used = _memory_slots(self.system.elements[k])
+            names = [f"{element}.{o}" for o in cls.OUTPUTS] + [f"{element}.memory.{o}" for o in used]
             ds = ds[names].rename({n: n.removeprefix(f"{element}.") for n in names})
         df = ds.to_dataframe()
         df.attrs["units"] = {k: ds[k].attrs["units"] for k in ds.data_vars} | {"time": "s"}

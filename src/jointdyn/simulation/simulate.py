@@ -13,7 +13,7 @@ import numpy as np
 
 from jointdyn.core import interrupts
 from jointdyn.errors import Interrupted, PhysicsWarning, SimulationError
-from jointdyn.forces.elements import FILM_BREAKDOWN
+from jointdyn.forces.elements import FILM_BREAKDOWN, THERMAL_RANGE
 from jointdyn.integrators import SOLVERS
 from jointdyn.integrators.accuracy import check_force_resolution
 from jointdyn.integrators.common import (
@@ -52,6 +52,13 @@ between calls, so this bounds the reaction time)"""
 
 
 def _message(system: System, status: int) -> str:
+    if status >= THERMAL_RANGE:
+        name = system.element_names[status - THERMAL_RANGE]
+        th = system.elements[status - THERMAL_RANGE].thermal
+        return (
+            f"element {name!r}: the oil temperature left the viscosity law's range of {th.oil} "
+            f"[T311]; raise thermal.mass_flow or thermal.h_A, or shorten the run"
+        )
     if status >= FILM_BREAKDOWN:
         name = system.element_names[status - FILM_BREAKDOWN]
         return (

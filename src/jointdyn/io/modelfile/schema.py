@@ -26,6 +26,8 @@ from jointdyn.film.models import FILM_MODELS
 from jointdyn.forces.contact_laws import CONTACT_LAWS
 from jointdyn.forces.elements import FORCE_ELEMENTS
 from jointdyn.forces.friction_laws import FRICTION_LAWS
+from jointdyn.forces.mixed import ASPERITY_MODELS
+from jointdyn.forces.thermal import THERMAL_MODELS
 from jointdyn.integrators import SOLVERS
 from jointdyn.multibody.codec import LAW_FIELDS
 from jointdyn.multibody.model import Body, Model
@@ -177,6 +179,8 @@ def schemas() -> dict[str, Any]:
         "contact": {n: _dataclass_schema(c, f"contact law = {n!r}") for n, c in CONTACT_LAWS.items()},
         "friction": {n: _dataclass_schema(c, f"friction law = {n!r}") for n, c in FRICTION_LAWS.items()},
         "film": {n: _dataclass_schema(c, f"film law = {n!r}") for n, c in FILM_MODELS.items()},
+        "thermal": {n: _dataclass_schema(c, f"thermal law = {n!r}") for n, c in THERMAL_MODELS.items()},
+        "asperity": {n: _dataclass_schema(c, f"asperity law = {n!r}") for n, c in ASPERITY_MODELS.items()},
         "simulation": _dataclass_schema(SimConfig, "simulation"),
     }
 
