@@ -1,7 +1,9 @@
 """The speed and memory targets of issue #27 ("fast from the first run"), measured side by side in
 one run, as one table.
 
-Usage: ``python -m benchmarks.targets [--repeat N] [--no-cold] [--write README.md]``
+Usage: ``python -m benchmarks.targets [--repeat N] [--no-cold] [--write README.md]``;
+``python -m benchmarks.targets --main-job [--repeat N] [--no-cold]`` measures the main job alone
+(first run, N warm runs and the dry ensemble's share of a warm run; ≈ 2 min) and writes nothing.
 
 Each row is measured by the benchmark module that owns it, in this one invocation (so every ratio
 compares numbers taken minutes apart on the same machine). CPU seconds (user + sys of the command
@@ -68,6 +70,36 @@ def cli_rows(cold: bool) -> dict:
     return out
 
 
+_ENSEMBLE = "from jointdyn.studies.reproduce_ensemble import dry_ensemble; dry_ensemble()"
+
+
+def main_job(cold: bool, repeat: int) -> dict:
+    """(wall [s], peak RSS [MB], CPU [s]) of ``jointdyn reproduce alshaer2005``: the first run
+    (``first``, only if ``cold``), ``repeat`` warm runs (``warm``: all of them) and, in a fresh
+    warm process, the dry ensemble the job runs (``ensemble``: its workers load the kernels
+    from the cache themselves, so this slightly overstates its share of the job)."""
+    out: dict = {"warm": []}
+    with tempfile.TemporaryDirectory() as home, tempfile.TemporaryDirectory() as d:
+        env = end_to_end.new_user_env(home) if cold else dict(os.environ)
+        cmd = [*JD, "reproduce", "alshaer2005", "--overwrite", "--out", os.path.join(d, "r")]
+        first = end_to_end.measure(cmd, env)
+        if cold:
+            out["first"] = first
+        out["warm"] = [end_to_end.measure(cmd, env) for _ in range(repeat)]
+        out["ensemble"] = end_to_end.measure([sys.executable, "-c", _ENSEMBLE], env)
+    return out
+
+
+def _main_job_text(m: dict) -> str:
+    lines = [f"first run: {_cpu(m['first'])}, peak RSS {m['first'][1]:.0f} MB"] if "first" in m else []
+    lines += [f"warm run {k + 1}: {_cpu(w)}, peak RSS {w[1]:.0f} MB" for k, w in enumerate(m["warm"])]
+    best = min(w[2] for w in m["warm"])
+    e = m["ensemble"]
+    share = f"{100 * e[2] / best:.0f} % of the best warm CPU"
+    lines.append(f"the dry ensemble alone (fresh warm process): {_cpu(e)}, {share}")
+    return "\n".join(lines)
+
+
 def _row(target: str, goal: str, measured: str, ok: bool | None) -> dict:
     return {
         "target": target,
@@ -102,8 +134,16 @@ def main(argv=None):
     ap.add_argument(
         "--write", type=Path, default=None, help="also write FILE's <!-- generated:targets --> block"
     )
+    ap.add_argument("--main-job", action="store_true", help="only the main job (first, warm, its ensemble)")
     a = ap.parse_args(argv)
     load_start = end_to_end.machine_load()
+    if a.main_job:
+        m = main_job(cold=not a.no_cold, repeat=a.repeat)
+        print(
+            _main_job_text(m)
+            + f"\nMachine: {load_start} at the start, {end_to_end.machine_load()} at the end."
+        )
+        return m
     first = "first run" if not a.no_cold else "run (warm caches: --no-cold)"
     cli = cli_rows(cold=not a.no_cold)
     rows = [

@@ -15,7 +15,7 @@ import pytest
 from jointdyn.models import slider_crank as sc
 from jointdyn.studies.reproduce import BEYOND_CASES, PAPER_CASES, csv_files, run_case
 from jointdyn.viz import plots, style
-from jointdyn.viz.reproduce_figures import draw_all
+from jointdyn.viz.reproduce_figures import _png, draw_all
 
 CASES = {c.name: c for c in PAPER_CASES + BEYOND_CASES}
 #: the main job's figure set on a short run: the four paper cases and one small-clearance case
@@ -146,6 +146,27 @@ def test_every_figure_of_the_main_job_keeps_legends_off_the_data(runs):
     expected |= {"moment_overlay.png", "moment_beyond.png", "film_thickness.png", "joint_force.png"}
     assert set(names) == expected
     assert problems == []
+
+
+def test_one_draw_png_is_byte_identical_to_savefig(runs):
+    """[T320] the report's PNGs drawn once (constrained layout and rendering in one canvas draw)
+    are the bytes matplotlib's two-pass ``savefig`` writes, for every figure of the main job."""
+    fig = plt.figure()
+    pairs = {}
+
+    def emit(name, f):
+        once = _png(f)
+        buf = io.BytesIO()
+        f.savefig(buf, format="png", dpi=130)
+        pairs[name] = (once, buf.getvalue())
+
+    try:
+        draw_all(fig, runs, REVS, emit)
+    finally:
+        plt.close(fig)
+    assert len(pairs) == 12  # 4 + 4 moments and orbits of SHORT, overlay, beyond, film, force
+    assert [n for n, (a, b) in pairs.items() if a != b] == []
+    assert all(a.startswith(b"\x89PNG") for a, _ in pairs.values())
 
 
 def test_small_orbit_is_zoomed_and_every_orbit_says_its_frame(runs):

@@ -20,9 +20,26 @@ from jointdyn import post
 from jointdyn.viz import plots, style
 
 
-def _png(fig) -> bytes:
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=130)
+def _png(fig, dpi: float = 130) -> bytes:
+    """``fig`` as PNG bytes at ``dpi``, drawn once [T320]: ``savefig`` with a layout engine draws
+    twice (a layout pass, then the picture); one ``canvas.draw`` runs the constrained layout and
+    renders, and the bytes are identical to ``fig.savefig(buf, format="png", dpi=dpi)``."""
+    import matplotlib
+    from matplotlib import image
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    canvas = fig.canvas if isinstance(fig.canvas, FigureCanvasAgg) else FigureCanvasAgg(fig)
+    old = fig.dpi
+    fig.dpi = dpi
+    try:
+        canvas.draw()
+        buf = io.BytesIO()
+        software = f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/"
+        image.imsave(
+            buf, canvas.buffer_rgba(), format="png", origin="upper", dpi=dpi, metadata={"Software": software}
+        )
+    finally:
+        fig.dpi = old
     return buf.getvalue()
 
 
