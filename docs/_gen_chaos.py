@@ -2,7 +2,8 @@
 
     python docs/_gen_chaos.py [--only poincare,lyapunov,lyapunov_tau,spectrum,ensemble]
 
-Writes docs/figures/chaos_*.png and prints the numbers quoted on the page. The bifurcation
+Writes docs/figures/chaos_*.png and prints the numbers quoted on the page (the Lyapunov table
+and the Poincaré spreads are checked by tests/test_docs_chaos_current.py, slow tier). The bifurcation
 diagram comes from `jointdyn bifurcation examples/bifurcation_dry_clearance.toml --out DIR`
 (copy DIR/bifurcation.png to docs/figures/chaos_bifurcation_clearance.png); the Ueda model file's
 exponent from the command in examples/ueda.toml.
@@ -18,23 +19,33 @@ from pathlib import Path
 FIG = Path(__file__).resolve().parent / "figures"
 
 
-def poincare(revs: int = 220, transient: int = 20):
+POINCARE_CASES = (
+    ("alshaer2005", "lubricated (π-film, μ = 0.4 Pa·s)", {"rtol": 1e-8, "atol": 1e-12}),
+    ("dry", "dry (c_r = 0.9)", {"rtol": 1e-8, "atol": 1e-11}),
+)
+
+
+def poincare_section(joint: str, kw: dict, revs: int = 220, transient: int = 20):
+    """The page's stroboscopic section of one joint (also run by
+    tests/test_docs_chaos_current.py, which checks the spreads quoted on the page)."""
     from jointdyn.models.slider_crank import SPEED
-    from jointdyn.studies.poincare import journal_section, plot_sections
+    from jointdyn.studies.poincare import journal_section
     from jointdyn.studies.runs import run_shipped
 
-    T = 2 * math.pi / SPEED
+    res, _, _ = run_shipped("slider-crank", joint, revs, samples_per_rev=72, **kw)
+    return journal_section(res, transient=transient * 2 * math.pi / SPEED)
+
+
+def poincare(revs: int = 220, transient: int = 20):
+    from jointdyn.studies.poincare import plot_sections
+
     secs = {}
-    for joint, label, kw in (
-        ("alshaer2005", "lubricated (π-film, μ = 0.4 Pa·s)", {"rtol": 1e-8, "atol": 1e-12}),
-        ("dry", "dry (c_r = 0.9)", {"rtol": 1e-8, "atol": 1e-11}),
-    ):
-        res, _, _ = run_shipped("slider-crank", joint, revs, samples_per_rev=72, **kw)
-        sec = journal_section(res, transient=transient * T)
+    for joint, label, kw in POINCARE_CASES:
+        sec = poincare_section(joint, kw, revs, transient)
         secs[label] = sec
         x, y = sec.values["ex_over_c"], sec.values["ey_over_c"]
         print(
-            f"poincare {joint}: {x.size} points, spread of ex/c {x.max() - x.min():.3g}, ey/c {y.max() - y.min():.3g}"
+            f"poincare {joint}: {x.size} points, spread of ex/c {x.max() - x.min():.2g}, ey/c {y.max() - y.min():.2g}"
         )
     plot_sections(
         secs, FIG / "chaos_poincare.png", "stroboscopic sections at crank angle 0, c = 0.5 mm, 5000 rpm"

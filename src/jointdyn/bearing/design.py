@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from jointdyn.core import interrupts
 from jointdyn.film import field as fm
 from jointdyn.film.cavitation import check_cavitation
 from jointdyn.film.fv import DEFAULT_MESH, check_ld, check_xi
@@ -188,6 +189,7 @@ def bearing_table(
     cav = None
     rows: list = [None] * e.size
     for k in np.argsort(e):  # ascending ε: the cavitated set of the previous ε is the warm start
+        interrupts.check()  # a signal recorded by a caller's catching() stops here [T332]
         d = steady_quantities(model, cavitation, float(ld), float(e[k]), mesh, cav)
         cav = d.get("cavitated")
         rows[k] = _row(float(e[k]), float(ld), d)

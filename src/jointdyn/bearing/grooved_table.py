@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from jointdyn.core import interrupts
 from jointdyn.film import grooved
 from jointdyn.film.coefficients import stability_threshold
 from jointdyn.film.field import peak_of, rupture_of
@@ -21,6 +22,7 @@ def numeric_coefficients(cavitation: str, ld: float, eps, supply, mesh=GROOVED_M
     the converged film [T247]; ``supply`` a :class:`Grooves` or "line"."""
     rows = []
     for x in eps:
+        interrupts.check()  # [T332]
         c = grooved.coefficients(ld, float(x), cavitation, supply, mesh)
         c.update(stability_threshold(c["K"], c["C"]))
         rows.append(c)
@@ -40,6 +42,7 @@ def grooved_table(
     dynamic coefficients (central differences)."""
     rows = []
     for x in eps:
+        interrupts.check()  # [T332]
         x = float(x)
         phi, W, sol, prob, fixed, lab = equilibrium(ld, x, cavitation, grooves, mesh)
         nt, nz = prob.shape

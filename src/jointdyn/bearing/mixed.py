@@ -15,6 +15,7 @@ import math
 from dataclasses import dataclass
 
 from jointdyn.bearing.design import EPS_MAX
+from jointdyn.core import interrupts
 from jointdyn.film.asperity import GreenwoodTripp, asperity_load
 from jointdyn.film.fv import DEFAULT_MESH
 from jointdyn.film.mixed import mixed_steady
@@ -189,6 +190,7 @@ def stribeck(b: Bearing, load: float, speeds_rpm, mesh=DEFAULT_MESH) -> dict:
             raise ValueError(f"speed = {x!r} [rev/min]: must be finite and > 0")
     rows = []
     for n in speeds:
+        interrupts.check()  # a signal recorded by a caller's catching() stops here [T332]
         op = operating_point(b, load, n / 60.0, mesh)
         op["speed_rpm"] = n
         rows.append(op)

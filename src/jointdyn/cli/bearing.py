@@ -11,7 +11,7 @@ from pathlib import Path
 
 import typer
 
-from jointdyn.cli.common import app
+from jointdyn.cli.common import _one_line_errors, app
 
 MAX_VALUES = 10_000  # eccentricity ratios in one table [-]
 
@@ -91,9 +91,11 @@ def bearing_table_cmd(
     from rich.markup import escape
 
     from jointdyn.bearing.design import bearing_table, equilibrium
+    from jointdyn.core import interrupts
 
     console = Console(stderr=True)
-    try:
+    # Ctrl-C/SIGTERM as a flag, checked per ε: one line, exit 130/143, never a traceback [T332]
+    with _one_line_errors():
         eps_list = _floats(eps, "eps")
         supply = _grooves(grooves, groove_width, feed_pressure, (speed, radius, clearance, viscosity), load)
         tab = bearing_table(model, cavitation, ld, eps_list, grooves=supply)
@@ -119,9 +121,7 @@ def bearing_table_cmd(
                 )
             else:
                 op = equilibrium(load, speed, radius, length, clearance, viscosity, model, cavitation)
-    except (ValueError, OSError) as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2) from None
+        interrupts.check()  # a signal during the operating point: nothing is written
     buf = io.StringIO()
     w = csv.writer(buf)
     w.writerow(list(tab))  # COLUMNS, then the dynamic coefficients where the film has them

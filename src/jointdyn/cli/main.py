@@ -10,7 +10,7 @@ from rich.table import Table
 
 from jointdyn.cli.common import _one_line_errors, _progress, app, console
 from jointdyn.models.catalog import DEFAULT, SHIPPED
-from jointdyn.studies.memory import check_memory
+from jointdyn.studies.memory import check_disk, check_memory
 
 #: the short options of ``run`` are those of the default shipped model
 _M = SHIPPED[DEFAULT]
@@ -107,6 +107,7 @@ def run(
 
             prepared = prepare_model_file(model, set_)
             check_memory(prepared[1], prepared[2].n_out, "simulation.n_out")
+            _large_write(check_disk(prepared[1], prepared[2].n_out, out, "simulation.n_out"))
             od = OutputDir(out, "run", prepared[3]).claim(overwrite)
             with _progress("run") as prog:
                 task = prog.add_task(prepared[0].name, total=1.0)
@@ -154,6 +155,7 @@ def _run_shipped(name: str, given: dict, set_: list[str], out: Path, overwrite: 
 
         with_keys(model, cfg, list(set_), f"{name} ({variant})", assemble=False)
     check_memory(model, cfg.n_out, "--revs × --samples-per-rev")
+    _large_write(check_disk(model, cfg.n_out, out, "--revs × --samples-per-rev"))
     spec = {"model": name, m.variant_arg: variant, "revs": revs, **run_kw} | {
         k: given[k] for k in given if k not in run_kw
     }
@@ -179,6 +181,12 @@ def _run_shipped(name: str, given: dict, set_: list[str], out: Path, overwrite: 
             tab.add_row(k, f"{v:.6g}" if isinstance(v, float) else escape(str(v)))
     console.print(tab)
     console.print(f"wrote {escape(str(out))}/: {', '.join(od.files)}, manifest.json")
+
+
+def _large_write(need: float) -> None:
+    """Say before a run that its files will be large (≥ 1 GiB): their writing takes a while."""
+    if need >= 2**30:
+        typer.echo(f"the results will take up to ≈ {need / 2**30:.3g} GiB on disk", err=True)
 
 
 def _tols(run_kw: dict) -> dict:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import typer
 
-from jointdyn.cli.common import app
+from jointdyn.cli.common import _one_line_errors, app
 
 
 def _pair(text: str, name: str) -> tuple[float, float]:
@@ -86,7 +86,7 @@ def stribeck_cmd(
     from jointdyn.film.flow_factors import AverageFlow
 
     console = Console(stderr=True)
-    try:
+    with _one_line_errors():  # Ctrl-C: one line, exit 130 (checked per speed) [T332]
         if (viscosity is None) == (oil is None):
             raise ValueError(
                 "give exactly one of --viscosity (Pa·s) and --oil (a grade, with --temperature in °C)"
@@ -106,7 +106,7 @@ def stribeck_cmd(
         w.writerow(STRIBECK_COLUMNS)
         for i in range(len(tab["speed_rpm"])):
             w.writerow([f"{tab[c][i]:.6g}" for c in STRIBECK_COLUMNS])
-        from jointdyn.core.atomic import write_text
+        from jointdyn.core.atomic import replacing, write_text
 
         write_text(out, buf.getvalue())
         import matplotlib
@@ -116,10 +116,8 @@ def stribeck_cmd(
 
         fig = stribeck_figure(tab, f"W = {load:g} N, R = {radius:g} m, L = {length:g} m, c = {clearance:g} m")
         png = out.with_suffix(".png")
-        fig.savefig(png, dpi=120)
-    except (ValueError, OSError) as err:
-        console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
-        raise typer.Exit(2) from None
+        with replacing(png) as tmp:  # atomic, never replacing a link or a special file
+            fig.savefig(tmp, dpi=120, format="png")
     k = min(range(len(tab["speed_rpm"])), key=lambda i: tab["friction_coefficient"][i])
     console.print(
         f"wrote {escape(str(out))} and {escape(str(png))}: minimum friction coefficient "

@@ -6,8 +6,8 @@
   creation fail and another name is drawn; it is never followed) — then fsynced, given mode
   ``0666 & ~umask`` (like any other file the user creates) and renamed over the target. A reader
   (or a process killed mid-write) sees the old complete file or the new one, never a truncated
-  one; the pid in the name lets a later run remove the temporaries of dead processes
-  (:func:`stale_temps`).
+  one; the pid in the name lets a later run remove the temporaries of dead processes, and of
+  a pid reused by a process started after the file was last written (:func:`stale_temps`).
 * The target is **never followed or replaced** when it is a symbolic link, a directory, a FIFO,
   a socket or a device (:class:`OutputError`, one line) — except that a character device the
   user names on purpose as an output file (``/dev/null``, ``/dev/stdout``, a terminal;
@@ -61,13 +61,37 @@ def alive(pid: int) -> bool:
     return True
 
 
+def _started(pid: int) -> float | None:
+    """Start time of process ``pid`` [s since the epoch] (Linux /proc; None where unknown)."""
+    try:
+        stat = Path(f"/proc/{pid}/stat").read_text()
+        ticks = int(stat.rsplit(")", 1)[1].split()[19])  # field 22: starttime [clock ticks]
+        btime = next(int(ln.split()[1]) for ln in open("/proc/stat") if ln.startswith("btime"))
+        return btime + ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError, StopIteration):
+        return None
+
+
+def _writing(pid: int, temp: Path) -> bool:
+    """Whether process ``pid`` may still be writing ``temp``: it exists and it did not start
+    after the file was last modified (a reused pid of a killed run's temporary) [T333]."""
+    if not alive(pid):
+        return False
+    start = _started(pid)
+    try:
+        return start is None or start <= temp.stat().st_mtime + 2.0  # 2 s: btime's resolution
+    except OSError:
+        return False
+
+
 def stale_temps(directory) -> list[Path]:
-    """Temporary files in ``directory`` left by jointdyn processes that are dead."""
+    """Temporary files in ``directory`` left by jointdyn processes that are dead (or whose pid
+    now belongs to a process started after the file was last written)."""
     out = []
     with contextlib.suppress(OSError):
         for p in Path(directory).iterdir():
             m = _TEMP.match(p.name)
-            if m and not alive(int(m.group(1))) and not p.is_dir():
+            if m and not p.is_dir() and not _writing(int(m.group(1)), p):
                 out.append(p)
     return out
 

@@ -1,9 +1,12 @@
-"""Memory check of a run before it starts: the result arrays must fit [T141]."""
+"""Memory and disk checks of a run before it starts: the result arrays must fit [T141], and so
+must its files [T331]."""
 
 from __future__ import annotations
 
 import math
 import os
+import shutil
+from pathlib import Path
 
 
 def available_memory() -> int:
@@ -42,3 +45,26 @@ def check_memory(model_or_system, n_out, what: str = "n_out") -> None:
             f"{what}: {float(n_out):.6g} output samples need ≈ {need / 2**30:.3g} GiB of memory, "
             f"{have / 2**30:.3g} GiB are available; lower the number of samples or the duration"
         )
+
+
+#: upper estimate of the bytes one output sample writes per column: 8 in results.nc (float64)
+#: plus 24 in timeseries.csv (17 significant digits, sign, exponent, separator) [T331]
+BYTES_PER_VALUE = 8 + 24
+
+
+def check_disk(model_or_system, n_out, out, what: str = "n_out") -> float:
+    """Refuse a run whose results.nc and timeseries.csv cannot fit on the file system of ``out``
+    (its nearest existing parent) before any work [T331]; returns the estimate [bytes]."""
+    n, m, e = _sizes(model_or_system)
+    need = BYTES_PER_VALUE * (3 * n + m + 2 + e) * float(n_out)
+    where = Path(out).absolute()
+    while not where.exists() and where != where.parent:
+        where = where.parent
+    free = shutil.disk_usage(where).free
+    if not math.isfinite(need) or need > free:
+        raise ValueError(
+            f"{what}: {float(n_out):.6g} output samples write ≈ {need / 2**30:.3g} GiB "
+            f"(results.nc + timeseries.csv), {free / 2**30:.3g} GiB are free on {where}; "
+            "lower the number of samples or the duration, or free space"
+        )
+    return need

@@ -200,10 +200,10 @@ def model_system(model: str, given: dict | None = None, revs: float = 1.0):
     overrides) or a shipped model (``given``: its variant and builder arguments by name, checked,
     plus dotted model-file keys set on the built model); a shipped model's config covers ``revs``
     revolutions of its driver."""
-    import json
+    from jointdyn.multibody.codec import toml_value
 
     given = dict(given or {})
-    keys = [f"{k}={json.dumps(v)}" for k, v in given.items() if "." in k]
+    keys = [f"{k}={toml_value(v)}" for k, v in given.items() if "." in k]
     if str(model).endswith(".toml") or Path(str(model)).is_file():
         from jointdyn.io.modelfile import load_system
 

@@ -40,11 +40,12 @@ FILE_RUN_KEYS = ("revs", "samples_per_rev")
 
 
 def file_call(merged: dict) -> tuple[str, list[str], dict]:
-    """``(model file, its overrides KEY=JSON, run keys)`` of one model-file case."""
-    import json
+    """``(model file, its overrides KEY=TOML, run keys)`` of one model-file case (inline tables
+    and strings written as TOML, not JSON)."""
+    from jointdyn.multibody.codec import toml_value
 
     extra = {k: v for k, v in merged.items() if k not in ("file", "model", *FILE_RUN_KEYS)}
-    overrides = [f"{k}={json.dumps(v)}" for k, v in extra.items()]
+    overrides = [f"{k}={toml_value(v)}" for k, v in extra.items()]
     return merged["file"], overrides, {k: merged[k] for k in FILE_RUN_KEYS if k in merged}
 
 
@@ -212,6 +213,14 @@ def _check_values(path, table: str, name: str, values: list) -> None:
             raise ValueError(f"{path}: [grid].{name} repeats {', '.join(dup)}: give each value once")
 
 
+def _check_names(names, what: str) -> None:
+    """Names that become sweep.nc variables or coordinates (``NAME.metric``) cannot hold '/'
+    (the HDF5 group separator): refused before any case runs, not after all of them [T330]."""
+    bad = [n for n in names if "/" in str(n)]
+    if bad:
+        raise ValueError(f"{what} name {bad[0]!r}: '/' cannot be in a sweep.nc variable name; rename it")
+
+
 def _check_param(base: dict, name: str, where: str = "sweep parameter"):
     if "file" in base or "." in name:
         return  # dotted model-file keys are checked by the model-file loader, per case
@@ -228,11 +237,11 @@ def shipped_call(merged: dict, variants_in_sweep: set | None = None, check_keys:
     default :data:`~jointdyn.models.catalog.DEFAULT`), checked
     (:meth:`~jointdyn.models.shipped.Shipped.call`); ``keys``: its dotted model-file keys as
     ``key=VALUE`` overrides, checked against the built model with ``check_keys``."""
-    import json
+    from jointdyn.multibody.codec import toml_value
 
     m = shipped(merged.get("model", DEFAULT))
     variant, model_kw, run_kw, revs = m.call(merged, variants_in_sweep)
-    keys = [f"{k}={json.dumps(v)}" for k, v in merged.items() if "." in k]
+    keys = [f"{k}={toml_value(v)}" for k, v in merged.items() if "." in k]
     if keys and check_keys:
         from jointdyn.io.modelfile import with_keys
 
@@ -260,17 +269,20 @@ def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
         for k in {*spec.base, *(k for c in cases for k in c)} & set(m.arguments()) - {va}:
             if not any(k in m.relevant(j) for j in joints & set(m.variants())):
                 raise ValueError(f"{k!r}: no effect on any {va} of this sweep ({', '.join(sorted(joints))})")
+    _check_names((k for c in cases[:1] for k in c), "sweep parameter")
+    names: dict = {}
     for i, params in enumerate(cases):
         merged = {**spec.base, **params}
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
             try:
                 if "file" in merged:  # values and names checked here; assembly once, in the run
-                    load_file_case(merged, assemble=False)
+                    names = load_file_case(merged, assemble=False)[0].items
                 else:
                     shipped_call(merged, joints)
             except ValueError as err:
                 invalid[i] = f"{type(err).__name__}: {err}"
+        _check_names(names, "element or joint")  # structural: the whole sweep, before any case
         for w in caught:
             if str(w.message) not in seen:
                 seen.add(str(w.message))

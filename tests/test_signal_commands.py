@@ -1,0 +1,44 @@
+"""Ctrl-C during the compute of the film-table commands (issue 28, "long runs, resources,
+signals"): before, SIGINT inside a compiled film solve surfaced as numba's "SystemError:
+CPUDispatcher(...) returned a result with an exception set" traceback, exit 1; now the signal is
+recorded and checked per ε or speed: one line, exit 130, nothing written [T332]."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).parents[1] / "src"
+COMMANDS = {
+    "bearing-table": ["bearing-table", "--ld", "1", "--eps", "0.1:0.95:5000"],
+    "stribeck": [
+        "stribeck", "--load", "2000", "--radius", "0.02", "--length", "0.02", "--clearance", "2e-5",
+        "--viscosity", "0.02", "--speeds", ",".join(str(10 + 10 * i) for i in range(400)),
+    ],
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("name", sorted(COMMANDS))
+def test_ctrl_c_while_computing_is_one_line(tmp_path, name):
+    out = tmp_path / "t.csv"
+    p = subprocess.Popen(
+        [sys.executable, "-c", "import jointdyn_entry as e; e.main()", *COMMANDS[name], "--out", str(out)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=os.environ | {"PYTHONPATH": str(SRC)},
+    )
+    time.sleep(8.0)  # past the imports (≈ 1.2 s of CPU) into the film solves
+    assert p.poll() is None, p.communicate()
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=120)
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert p.returncode == 130 and "Traceback" not in err and len(lines) == 1, err
+    assert lines[0].startswith("interrupted by SIGINT")
+    assert not out.exists() and not list(tmp_path.glob(".*tmp*"))
