@@ -1,0 +1,227 @@
+"""Transient mass-conserving (JFO / Elrod–Adams) film in the bearing frame and the orbit of a
+dynamically loaded journal [T300–T303].
+
+The mesh is fixed in the bearing (uniform in θ, so the film content of a cell stays that cell's
+history); the journal centre e = c·ξ(cos γ, sin γ) in that frame puts the maximum film at
+θ = γ + π. Per cell, with the fill θ_f (content / clearance volume), complementary to P ≥ 0:
+
+    (M P)_k + ω·cv_j·(H_(i+1/2) θ_f,i − H_(i−1/2) θ_f,i−1) + 2·area_k·(H θ_f − H⁰ θ_f⁰)_k / Δt = 0
+
+(backward Euler from the content H⁰θ_f⁰ of the last step; ω = ω_J − ω_B the journal's rotation
+relative to the bearing [rad/s]; P in 1/s, p = (6μR²/c²)·P) [T300]. Solved by the primal–dual
+active set of [T243] (cells leave the full set when P < 0, the cavitated set when θ_f > 1).
+Summing the cell balances gives, exactly, inflow (net outflow of the supply cells) = side outflow
++ content change / Δt, so the lubricant balance of a run closes to round-off [T301].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import csc_matrix, csr_matrix, diags
+from scipy.sparse.linalg import splu
+
+from jointdyn.film.fv import assemble, check_ld
+from jointdyn.film.grooved import Grooves, groove_labels
+from jointdyn.film.jfo import transport
+
+#: default mesh of the transient film: uniform cells around, cells on the half length [-]
+TRANSIENT_MESH = (36, 8)
+
+
+@dataclass(frozen=True)
+class Step:
+    """One solved step: P (N,) [1/s], fill θ_f (N,) [-], cavitated set (N,) bool, H (N,) [-],
+    force on the journal F (2,) [μR⁴/c²·1/s], flows over both halves in units R²c [1/s]
+    (``inflow`` total and ``per_groove``, ``side`` outflow through both ends), ``content``
+    Σ 2·area·Hθ_f over both halves [R²c], iterations [T301]."""
+
+    P: np.ndarray
+    fill: np.ndarray
+    cav: np.ndarray
+    H: np.ndarray
+    F: np.ndarray
+    inflow: float
+    per_groove: tuple
+    side: float
+    content: float
+    iterations: int
+
+
+class TransientFilm:
+    """The transient jfo film of a bearing with L/D = ``ld`` fed through ``grooves`` (a
+    :class:`~jointdyn.film.grooved.Grooves`, angles in the bearing frame; its ``feed`` here in
+    the pressure unit 6μR²/c²·1/s) on ``mesh`` = (cells around, cells on the half length)."""
+
+    def __init__(self, ld: float, grooves: Grooves, mesh=TRANSIENT_MESH):
+        check_ld(ld)
+        nt, nz = (int(m) for m in mesh)
+        if nt < 8 or nz < 2:
+            raise ValueError(f"mesh = {mesh!r} [-]: needs at least 8 cells around and 2 on the half length")
+        self.ld, self.mesh = float(ld), (nt, nz)
+        p0 = assemble(0.0, ld, nt, nz, kappa=0.0)
+        self.labels = groove_labels(p0.theta, nz, grooves)
+        self.fixed = self.labels >= 0
+        self.pfix = np.where(self.fixed, float(grooves.feed), 0.0)
+        self.ngroove = len(grooves.centres)
+        self.theta = np.repeat(p0.theta, nz)
+
+    def film(self, e) -> tuple:
+        """(problem, H (N,)) with the journal at e = (ξ_x, ξ_y) [-], |e| < 1."""
+        xi = math.hypot(e[0], e[1])
+        gamma = math.atan2(e[1], e[0])
+        nt, nz = self.mesh
+        prob = assemble(xi, self.ld, nt, nz, kappa=0.0, phase=gamma + math.pi)
+        return prob, 1.0 - e[0] * np.cos(self.theta) - e[1] * np.sin(self.theta)
+
+    def flooded(self, e) -> np.ndarray:
+        """Content H·1 of a full film at e (the start of a run) [-]."""
+        return self.film(e)[1].copy()
+
+    def step(self, e, omega: float, dt: float, content0: np.ndarray, warm=None, max_iter: int = 200) -> Step:
+        """Backward-Euler step [T300] to the journal position e = (ξ_x, ξ_y) [-] from the cell
+        contents ``content0`` = H⁰θ_f⁰ (N,) [-] over dt [s] at relative rotation ω [rad/s]."""
+        if not (math.isfinite(dt) and dt > 0.0):
+            raise ValueError(f"dt = {dt!r} [s]: must be > 0")
+        if not math.hypot(e[0], e[1]) < 1.0:
+            raise ValueError(f"journal position |e|/c = {math.hypot(e[0], e[1])!r} [-]: must be < 1")
+        prob, H = self.film(e)
+        N = H.size
+        M = csc_matrix(prob.M)
+        T = csc_matrix(transport(prob, 0.0, 0.0, omega) + diags(2.0 * prob.area * H / dt))
+        b0 = 2.0 * prob.area * np.asarray(content0, float) / dt
+        pf, rows = self.pfix, ~self.fixed
+        free = np.flatnonzero(rows)
+        if warm is None:  # start: where the flooded film would be under ambient pressure
+            rhs = b0 - M @ pf - T @ np.ones(N)
+            P0 = np.zeros(N)
+            P0[rows] = splu(csc_matrix(M[rows][:, rows])).solve(rhs[rows])
+            cav = (P0 < 0.0) & rows
+        else:
+            cav = np.asarray(warm, bool) & rows
+        for it in range(1, max_iter + 1):
+            full = rows & ~cav
+            rhs = b0 - M @ pf - T @ np.where(cav, 0.0, 1.0)
+            S = (M @ diags(full.astype(float)) + T @ diags(cav.astype(float))).tocsr()[rows]
+            x = np.zeros(N)
+            x[free] = splu(csc_matrix(S[:, free])).solve(rhs[rows])
+            P = np.where(full, x, pf)
+            th = np.where(cav, x, 1.0)
+            new = np.where(cav, ~(th > 1.0), P < 0.0) & rows
+            if np.array_equal(new, cav):
+                P[cav] = 0.0
+                return self._done(prob, M, T, b0, P, th, H, cav, it)
+            cav = new
+        raise RuntimeError(f"transient jfo active set did not settle in {max_iter} iterations")
+
+    def _done(self, prob, M, T, b0, P, th, H, cav, it) -> Step:
+        MP = M @ P
+        r = MP + T @ th - b0  # net outflow of every cell: 0 off the supply [T301]
+        inj = r  # both halves (×2) in units R²c/2 (×1/2) = units R²c
+        per = tuple(float(np.sum(inj[self.labels == g])) for g in range(self.ngroove))
+        w = 2.0 * prob.area * P
+        F = -6.0 * np.array([np.sum(w * np.cos(self.theta)), np.sum(w * np.sin(self.theta))])
+        return Step(
+            P,
+            th,
+            cav,
+            H,
+            F,
+            float(np.sum(inj[self.fixed])),
+            per,
+            float(np.sum(MP)),
+            2.0 * float(np.sum(prob.area * H * th)),
+            it,
+        )
+
+    def residual(self, s: Step, e, omega, dt, content0) -> float:
+        """Largest imbalance of a non-supply cell relative to the largest cell flux [-] [T301]."""
+        prob, H = self.film(e)
+        T = transport(prob, 0.0, 0.0, omega) + diags(2.0 * prob.area * H / dt)
+        b0 = 2.0 * prob.area * np.asarray(content0, float) / dt
+        r = csr_matrix(prob.M) @ s.P + T @ s.fill - b0
+        scale = max(float(np.max(np.abs(T.diagonal()))), 1e-300)
+        return float(np.max(np.abs(r[~self.fixed])) / scale)
+
+
+def orbit(film: TransientFilm, omega, load, times, e0, tol: float = 1e-10, max_newton: int = 30) -> dict:
+    """Orbit of a massless journal under the load ``load(t)`` -> (W_x, W_y) [μR⁴/c²·1/s] on the
+    journal (bearing frame) at relative rotation ``omega(t)`` [rad/s]: at every t_(n+1) of
+    ``times`` [s] the film force balances the load, F(e_(n+1)) + W(t_(n+1)) = 0, with
+    e_(n+1) = e_n + Δt·ė and the content of the backward-Euler step [T300, T302]; Newton on ė
+    (Jacobian by differences, steps halved while |e| ≥ 1). Starts from a full film at ``e0``.
+    Returns arrays over ``times``: e (n, 2) [-], force (n, 2), content, inflow, side, cavitated
+    fraction, per_groove (n, grooves), newton iterations."""
+    times = np.asarray(times, float)
+    if times.ndim != 1 or times.size < 2 or not np.all(np.diff(times) > 0.0):
+        raise ValueError("times [s]: need at least two increasing instants")
+    e = np.asarray(e0, float)
+    content = film.flooded(e)
+    n = times.size
+    out = {k: np.full(n, np.nan) for k in ("content", "inflow", "side", "cavitated")}
+    out["e"] = np.full((n, 2), np.nan)
+    out["force"] = np.full((n, 2), np.nan)
+    out["per_groove"] = np.full((n, film.ngroove), np.nan)
+    out["newton"] = np.zeros(n, int)
+    out["e"][0] = e
+    out["content"][0] = 2.0 * float(np.sum(_area(film) * content))
+    v = np.zeros(2)
+    warm = None
+    for k in range(1, n):
+        dt = times[k] - times[k - 1]
+        W = np.asarray(load(times[k]), float)
+        om = float(omega(times[k]))
+
+        def res(vv, warm_=None):
+            s = film.step(e + dt * vv, om, dt, content, warm_)
+            return s.F + W, s
+
+        r, s = res(v, warm)
+        scale = max(float(np.hypot(*W)), 1e-300)
+        it = 0
+        while float(np.hypot(*r)) > tol * scale:
+            it += 1
+            if it > max_newton:
+                raise RuntimeError(f"t = {times[k]!r} [s]: the journal's force balance did not converge")
+            h = 1e-7 * max(1.0, float(np.hypot(*v)))
+            J = np.empty((2, 2))
+            for j in range(2):
+                d = np.zeros(2)
+                d[j] = h
+                J[:, j] = (res(v + d, s.cav)[0] - r) / h
+            dv = -np.linalg.solve(J, r)
+            lam = 1.0
+            while np.hypot(*(e + dt * (v + lam * dv))) >= 0.999:
+                lam *= 0.5
+            r_new, s_new = res(v + lam * dv, s.cav)
+            while float(np.hypot(*r_new)) > float(np.hypot(*r)) and lam > 1e-3:
+                lam *= 0.5
+                r_new, s_new = res(v + lam * dv, s.cav)
+            v, r, s = v + lam * dv, r_new, s_new
+        e = e + dt * v
+        content = s.H * s.fill
+        warm = s.cav
+        out["e"][k] = e
+        out["force"][k] = s.F
+        out["content"][k] = s.content
+        out["inflow"][k] = s.inflow
+        out["side"][k] = s.side
+        out["cavitated"][k] = float(np.mean(s.cav))
+        out["per_groove"][k] = s.per_groove
+        out["newton"][k] = it
+    return out
+
+
+def _area(film: TransientFilm) -> np.ndarray:
+    nt, nz = film.mesh
+    return assemble(0.0, film.ld, nt, nz, kappa=0.0).area
+
+
+def balance_error(run: dict, times) -> float:
+    """|content change − Σ Δt·(inflow − side)| relative to the content [-]: the backward-Euler
+    balance of [T301] summed over a run of :func:`orbit`."""
+    dt = np.diff(np.asarray(times, float))
+    net = float(np.sum(dt * (run["inflow"][1:] - run["side"][1:])))
+    return abs(run["content"][-1] - run["content"][0] - net) / abs(run["content"][0])
