@@ -136,6 +136,28 @@ class TransientFilm:
             it,
         )
 
+    def reynolds(self, e, v, omega: float, warm=None) -> Step:
+        """Swift–Stieber film (no content history) at e = (ξ_x, ξ_y) [-] moving at v = ė/c [1/s]
+        [T80, T302]: the LCP in the rates A = ξ̇, ξΩ = ξω − 2 t·v, supply cells held at the feed
+        pressure; flows and content are not defined here (NaN)."""
+        from jointdyn.film.cavitation import condition
+
+        prob, H = self.film(e)
+        xi = math.hypot(e[0], e[1])
+        if xi > 0.0:
+            u = (e[0] / xi, e[1] / xi)
+            A = u[0] * v[0] + u[1] * v[1]
+            xO = xi * omega - 2.0 * (-u[1] * v[0] + u[0] * v[1])
+        else:
+            A, xO = 0.0, 0.0
+        sol = condition("reynolds").solve(prob, A, xO / (2.0 + xi * xi), self.fixed, warm, self.pfix)
+        w = 2.0 * prob.area * sol.P
+        F = -6.0 * np.array([np.sum(w * np.cos(self.theta)), np.sum(w * np.sin(self.theta))])
+        nan = math.nan
+        return Step(
+            sol.P, np.ones_like(H), sol.state, H, F, nan, (nan,) * self.ngroove, nan, nan, sol.iterations
+        )
+
     def residual(self, s: Step, e, omega, dt, content0) -> float:
         """Largest imbalance of a non-supply cell relative to the largest cell flux [-] [T301]."""
         prob, H = self.film(e)
@@ -146,14 +168,20 @@ class TransientFilm:
         return float(np.max(np.abs(r[~self.fixed])) / scale)
 
 
-def orbit(film: TransientFilm, omega, load, times, e0, tol: float = 1e-10, max_newton: int = 30) -> dict:
+def orbit(
+    film: TransientFilm, omega, load, times, e0, law: str = "jfo", tol: float = 1e-10, max_newton: int = 30
+) -> dict:
     """Orbit of a massless journal under the load ``load(t)`` -> (W_x, W_y) [μR⁴/c²·1/s] on the
     journal (bearing frame) at relative rotation ``omega(t)`` [rad/s]: at every t_(n+1) of
     ``times`` [s] the film force balances the load, F(e_(n+1)) + W(t_(n+1)) = 0, with
     e_(n+1) = e_n + Δt·ė and the content of the backward-Euler step [T300, T302]; Newton on ė
     (Jacobian by differences, steps halved while |e| ≥ 1). Starts from a full film at ``e0``.
+    ``law``: "jfo" (the transient film [T300]) or "reynolds" (Swift–Stieber at every instant, no
+    history; content and flows NaN) [T302].
     Returns arrays over ``times``: e (n, 2) [-], force (n, 2), content, inflow, side, cavitated
     fraction, per_groove (n, grooves), newton iterations."""
+    if law not in ("jfo", "reynolds"):
+        raise ValueError(f"law = {law!r}: must be 'jfo' or 'reynolds'")
     times = np.asarray(times, float)
     if times.ndim != 1 or times.size < 2 or not np.all(np.diff(times) > 0.0):
         raise ValueError("times [s]: need at least two increasing instants")
@@ -175,7 +203,10 @@ def orbit(film: TransientFilm, omega, load, times, e0, tol: float = 1e-10, max_n
         om = float(omega(times[k]))
 
         def res(vv, warm_=None):
-            s = film.step(e + dt * vv, om, dt, content, warm_)
+            if law == "reynolds":
+                s = film.reynolds(e + dt * vv, vv, om, warm_)
+            else:
+                s = film.step(e + dt * vv, om, dt, content, warm_)
             return s.F + W, s
 
         r, s = res(v, warm)
