@@ -30,7 +30,9 @@ def test_one_long_step_is_the_steady_jfo_film():
     g = axial_grooves(2, 20.0)
     f = TransientFilm(0.5, g, MESH)
     e = (0.5, 0.4)
-    s = f.step(e, 1.0, 1e9, 0.3 * f.flooded(e))
+    c0 = 0.3 * f.flooded(e)
+    s = f.step(e, 1.0, 1e9, c0)
+    assert f.residual(s, e, 1.0, 1e9, c0) < 1e-13
     prob, H = f.film(e)
     P, fill, *_ = solve_jfo(prob, 0.0, 0.0, f.fixed, omega=1.0)
     assert np.max(np.abs(s.P - P)) < 1e-8 * np.max(P)
