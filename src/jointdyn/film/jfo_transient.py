@@ -168,80 +168,123 @@ class TransientFilm:
         return float(np.max(np.abs(r[~self.fixed])) / scale)
 
 
+def _balance(film, law, e, v, content, warm, dt, W, om, mass, tol, max_newton):
+    """One backward-Euler step of the orbit [T302]: (ė, step, Newton iterations), or None when
+    Newton does not converge in ``max_newton`` iterations."""
+    v0 = v.copy()
+
+    def res(vv, warm_):
+        if law == "reynolds":
+            s = film.reynolds(e + dt * vv, vv, om, warm_)
+        else:
+            s = film.step(e + dt * vv, om, dt, content, warm_)
+        return s.F + W - mass * (vv - v0) / dt, s
+
+    while np.hypot(*(e + dt * v)) >= 0.999:  # the previous rate as the guess, kept inside
+        v = 0.5 * v
+    r, s = res(v, warm)
+    scale = max(float(np.hypot(*W)), abs(om), 1e-300)  # ω: the film's force unit μωR⁴/c²
+    it = 0
+    while float(np.hypot(*r)) > tol * scale:
+        it += 1
+        if it > max_newton:
+            return None
+        h = 1e-7 * max(1.0, float(np.hypot(*v)))
+        J = np.empty((2, 2))
+        for j in range(2):
+            d = np.zeros(2)
+            d[j] = h
+            J[:, j] = (res(v + d, s.cav)[0] - r) / h
+        dv = -np.linalg.solve(J, r)
+        lam = 1.0
+        while np.hypot(*(e + dt * (v + lam * dv))) >= 0.999:
+            lam *= 0.5
+        r_new, s_new = res(v + lam * dv, s.cav)
+        while float(np.hypot(*r_new)) > float(np.hypot(*r)) and lam > 1e-3:
+            lam *= 0.5
+            r_new, s_new = res(v + lam * dv, s.cav)
+        v, r, s = v + lam * dv, r_new, s_new
+    return v, s, it
+
+
 def orbit(
-    film: TransientFilm, omega, load, times, e0, law: str = "jfo", tol: float = 1e-10, max_newton: int = 30
+    film: TransientFilm,
+    omega,
+    load,
+    times,
+    e0,
+    law: str = "jfo",
+    tol: float = 1e-10,
+    max_newton: int = 20,
+    max_move: float = 0.05,
+    mass: float = 0.0,
 ) -> dict:
-    """Orbit of a massless journal under the load ``load(t)`` -> (W_x, W_y) [μR⁴/c²·1/s] on the
-    journal (bearing frame) at relative rotation ``omega(t)`` [rad/s]: at every t_(n+1) of
-    ``times`` [s] the film force balances the load, F(e_(n+1)) + W(t_(n+1)) = 0, with
-    e_(n+1) = e_n + Δt·ė and the content of the backward-Euler step [T300, T302]; Newton on ė
-    (Jacobian by differences, steps halved while |e| ≥ 1). Starts from a full film at ``e0``.
-    ``law``: "jfo" (the transient film [T300]) or "reynolds" (Swift–Stieber at every instant, no
-    history; content and flows NaN) [T302].
-    Returns arrays over ``times``: e (n, 2) [-], force (n, 2), content, inflow, side, cavitated
-    fraction, per_groove (n, grooves), newton iterations."""
+    """Orbit of a journal under the load ``load(t)`` -> (W_x, W_y) [μR⁴/c²·1/s] on the journal
+    (bearing frame) at relative rotation ``omega(t)`` [rad/s] [T300, T302]: each step solves
+    m̄(ė_(n+1) − ė_n)/Δt = F(e_(n+1)) + W(t_(n+1)) with e_(n+1) = e_n + Δt·ė_(n+1) and the content
+    of the backward-Euler step (``mass`` m̄ = m c³/(μR⁴) [s], m the mass moving with the journal
+    relative to the bearing [kg]; 0: massless, Booker's problem). Newton on ė (Jacobian by
+    differences, steps halved while |e| ≥ 0.999 or the residual grows) to
+    |F + W − m̄ΔΔe| ≤ ``tol``·max(|W|, |ω|) (ω: the steady force unit).
+    Error control [T303]: an interval of ``times`` is split into halves, recursively, while a
+    step moves the journal by more than ``max_move`` [c] or Newton needs more than
+    ``max_newton`` iterations. Starts from a full film at ``e0``. ``law``: "jfo" (the transient
+    film) or "reynolds" (Swift–Stieber at every instant, no history; content and flows NaN).
+    Returns arrays over ``times``: e (n, 2) [-], force (n, 2), content [R²c], inflow, side
+    [R²c/s] (of the last sub-step), net_in = ∫(inflow − side)dt over the interval ending there
+    [R²c], cavitated fraction, per_groove (n, grooves), Newton iterations and sub-steps per
+    interval."""
     if law not in ("jfo", "reynolds"):
         raise ValueError(f"law = {law!r}: must be 'jfo' or 'reynolds'")
+    if not (math.isfinite(mass) and mass >= 0.0):
+        raise ValueError(f"mass = {mass!r} [s] (m c³/(μR⁴)): must be finite and >= 0")
+    if not (0.0 < max_move <= 1.0):
+        raise ValueError(f"max_move = {max_move!r} [c]: must be in (0, 1]")
     times = np.asarray(times, float)
     if times.ndim != 1 or times.size < 2 or not np.all(np.diff(times) > 0.0):
         raise ValueError("times [s]: need at least two increasing instants")
     e = np.asarray(e0, float)
     content = film.flooded(e)
     n = times.size
-    out = {k: np.full(n, np.nan) for k in ("content", "inflow", "side", "cavitated")}
+    out = {k: np.full(n, np.nan) for k in ("content", "inflow", "side", "cavitated", "net_in")}
     out["e"] = np.full((n, 2), np.nan)
     out["force"] = np.full((n, 2), np.nan)
     out["per_groove"] = np.full((n, film.ngroove), np.nan)
     out["newton"] = np.zeros(n, int)
+    out["substeps"] = np.zeros(n, int)
     out["e"][0] = e
     out["content"][0] = 2.0 * float(np.sum(_area(film) * content))
     v = np.zeros(2)
     warm = None
     for k in range(1, n):
-        dt = times[k] - times[k - 1]
-        W = np.asarray(load(times[k]), float)
-        om = float(omega(times[k]))
-
-        def res(vv, warm_=None):
-            if law == "reynolds":
-                s = film.reynolds(e + dt * vv, vv, om, warm_)
-            else:
-                s = film.step(e + dt * vv, om, dt, content, warm_)
-            return s.F + W, s
-
-        r, s = res(v, warm)
-        scale = max(float(np.hypot(*W)), 1e-300)
-        it = 0
-        while float(np.hypot(*r)) > tol * scale:
-            it += 1
-            if it > max_newton:
-                raise RuntimeError(f"t = {times[k]!r} [s]: the journal's force balance did not converge")
-            h = 1e-7 * max(1.0, float(np.hypot(*v)))
-            J = np.empty((2, 2))
-            for j in range(2):
-                d = np.zeros(2)
-                d[j] = h
-                J[:, j] = (res(v + d, s.cav)[0] - r) / h
-            dv = -np.linalg.solve(J, r)
-            lam = 1.0
-            while np.hypot(*(e + dt * (v + lam * dv))) >= 0.999:
-                lam *= 0.5
-            r_new, s_new = res(v + lam * dv, s.cav)
-            while float(np.hypot(*r_new)) > float(np.hypot(*r)) and lam > 1e-3:
-                lam *= 0.5
-                r_new, s_new = res(v + lam * dv, s.cav)
-            v, r, s = v + lam * dv, r_new, s_new
-        e = e + dt * v
-        content = s.H * s.fill
-        warm = s.cav
+        pending = [(times[k - 1], times[k])]
+        net = 0.0
+        while pending:
+            t0, t1 = pending.pop()
+            dt = t1 - t0
+            W, om = np.asarray(load(t1), float), float(omega(t1))
+            got = _balance(film, law, e, v, content, warm, dt, W, om, mass, tol, max_newton)
+            if got is None or float(np.hypot(*(dt * got[0]))) > max_move:
+                if dt < 1e-9 * (times[-1] - times[0]):
+                    raise RuntimeError(f"t = {t1!r} [s]: the journal's force balance did not converge")
+                tm = 0.5 * (t0 + t1)
+                pending += [(tm, t1), (t0, tm)]
+                continue
+            v, s, it = got
+            e = e + dt * v
+            content = s.H * s.fill
+            warm = s.cav
+            net += dt * (s.inflow - s.side)
+            out["newton"][k] += it
+            out["substeps"][k] += 1
         out["e"][k] = e
         out["force"][k] = s.F
         out["content"][k] = s.content
         out["inflow"][k] = s.inflow
         out["side"][k] = s.side
+        out["net_in"][k] = net
         out["cavitated"][k] = float(np.mean(s.cav))
         out["per_groove"][k] = s.per_groove
-        out["newton"][k] = it
     return out
 
 
@@ -250,9 +293,8 @@ def _area(film: TransientFilm) -> np.ndarray:
     return assemble(0.0, film.ld, nt, nz, kappa=0.0).area
 
 
-def balance_error(run: dict, times) -> float:
+def balance_error(run: dict) -> float:
     """|content change − Σ Δt·(inflow − side)| relative to the content [-]: the backward-Euler
-    balance of [T301] summed over a run of :func:`orbit`."""
-    dt = np.diff(np.asarray(times, float))
-    net = float(np.sum(dt * (run["inflow"][1:] - run["side"][1:])))
+    balance of [T301] summed over the (sub-)steps of a run of :func:`orbit`."""
+    net = float(np.sum(run["net_in"][1:]))
     return abs(run["content"][-1] - run["content"][0] - net) / abs(run["content"][0])
