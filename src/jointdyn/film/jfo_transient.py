@@ -225,7 +225,7 @@ def orbit(
     of the backward-Euler step (``mass`` m̄ = m c³/(μR⁴) [s], m the mass moving with the journal
     relative to the bearing [kg]; 0: massless, Booker's problem). Newton on ė (Jacobian by
     differences, steps halved while |e| ≥ 0.999 or the residual grows) to
-    |F + W − m̄ΔΔe| ≤ ``tol``·max(|W|, |ω|) (ω: the steady force unit).
+    a residual ≤ ``tol``·max(|W|, |ω|) (ω: the steady force unit).
     Error control [T303]: an interval of ``times`` is split into halves, recursively, while a
     step moves the journal by more than ``max_move`` [c] or Newton needs more than
     ``max_newton`` iterations. Starts from a full film at ``e0``. ``law``: "jfo" (the transient
