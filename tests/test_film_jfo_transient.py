@@ -94,6 +94,10 @@ def test_bad_input_is_named():
         f.step((1.0, 0.1), 1.0, 0.1, c)
     with pytest.raises(ValueError, match="law = 'gumbel'"):
         orbit(f, lambda t: 1.0, _pulsating, [0.0, 1.0], (0.1, 0.0), law="gumbel")
+    with pytest.raises(ValueError, match=r"mass = -1.0 \[s\]"):
+        orbit(f, lambda t: 1.0, _pulsating, [0.0, 1.0], (0.1, 0.0), mass=-1.0)
+    with pytest.raises(ValueError, match=r"max_move = 0.0 \[c\]"):
+        orbit(f, lambda t: 1.0, _pulsating, [0.0, 1.0], (0.1, 0.0), max_move=0.0)
     with pytest.raises(ValueError, match=r"times \[s\]"):
         orbit(f, lambda t: 1.0, _pulsating, [1.0, 0.0], (0.1, 0.0))
     with pytest.raises(ValueError, match=r"mesh = .* \[-\]"):
@@ -101,3 +105,17 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match="L/D"):
         TransientFilm(-1.0, ONE_GROOVE, MESH)
     assert assemble(0.0, 0.5, *MESH, kappa=0.0).area.size == MESH[0] * MESH[1]
+
+
+@pytest.mark.slow
+def test_big_end_page_is_current():
+    """The numbers of docs/user-guide/big-end.md are those ``docs/_gen_big_end.py`` computes now
+    (≈ 1 min CPU)."""
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "docs" / "_gen_big_end.py"
+    spec = importlib.util.spec_from_file_location("_gen_big_end", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    assert mod.main(["--check"]) == 0, "run python docs/_gen_big_end.py"
