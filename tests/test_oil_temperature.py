@@ -13,13 +13,15 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from jointdyn.core.constraints import Revolute
-from jointdyn.errors import SimulationError
+from jointdyn.errors import PhysicsWarning, SimulationError
+from jointdyn.film.models import film_forces
 from jointdyn.film.viscosity import oil_by_name
 from jointdyn.forces.journal import JournalBearing
 from jointdyn.forces.thermal import LumpedOil
 from jointdyn.io.modelfile import load_model
 from jointdyn.multibody.codec import decode_item, encode_value
 from jointdyn.multibody.model import Model
+from jointdyn.post import film_outputs, film_states, film_viscosity
 from jointdyn.simulation.simulate import SimConfig, simulate
 
 R, L, C = 0.01, 0.02, 20e-6  # journal radius, length, clearance [m]
@@ -32,7 +34,19 @@ def _flywheel(thermal):
     m.add_body("w", 1.0, INERTIA, points={"O": (0.0, 0.0)})
     m.add("axle", Revolute("ground", "O", "w", "O"))  # ξ = 0: the film carries no load
     m.add(
-        "bearing", JournalBearing("ground", "O", "w", "O", R + C, R, L, 0.04, film="short", thermal=thermal)
+        "bearing",
+        JournalBearing(
+            "ground",
+            "O",
+            "w",
+            "O",
+            R + C,
+            R,
+            L,
+            0.04 if thermal is None else None,
+            film="short",
+            thermal=thermal,
+        ),
     )
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # short film at L/D = 1
@@ -125,7 +139,6 @@ point_j = "O"
 bearing_radius = {R + C}
 journal_radius = {R}
 length = {L}
-viscosity = 0.04
 film = "short"
 thermal = {{ law = "lumped", oil = "ISO_VG46", inlet_temp = 40.0, heat_capacity = 20.0, h_A = 0.5 }}
 [simulation]
@@ -146,3 +159,43 @@ t_end = 1.0
     p.write_text(text.replace("heat_capacity = 20.0", "heat_capacity = -1.0"))
     with pytest.raises(Exception, match="heat_capacity"):
         load_model(p, assemble=False)
+
+
+def test_the_viscosity_is_the_oils_everywhere():
+    """With ``thermal`` the bearing takes no ``viscosity`` (one given anyway is unused and said
+    so; none without thermal is refused), and what is computed after the run from the film (peak
+    pressure) uses μ(T) of the run's memory, not a constant [T311]."""
+    th = LumpedOil("ISO_VG46", inlet_temp=40.0, heat_capacity=2.0, h_A=0.05)
+    with pytest.warns(PhysicsWarning, match=r"viscosity = 0.04 \[Pa·s\] is unused"):
+        JournalBearing("a", "A", "b", "B", R + C, R, L, 0.04, film="alshaer2005", thermal=th).validate()
+    with pytest.raises(ValueError, match=r"viscosity \[Pa·s\]: required \(> 0\) unless thermal is set"):
+        JournalBearing("a", "A", "b", "B", R + C, R, L, film="short").validate()
+    # a free journal carrying its weight (ξ > 0: a pressure field), spinning down while the oil heats
+    m = Model("free journal", gravity=(0.0, -9.81))
+    m.add_ground_point("O", (0.0, 0.0))
+    m.add_body("w", 1.0, INERTIA, points={"O": (0.0, 0.0)})
+    m.add("bearing", JournalBearing("ground", "O", "w", "O", R + C, R, L, film="short", thermal=th))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # short film at L/D = 1
+        s = m.compile(centre_imperfect=False)
+    y0 = s.y0.copy()
+    y0[len(y0) // 2 + 2] = W0
+    res = simulate(s, SimConfig(t_end=2.0, n_out=41), y0=y0)
+    T = res.memory("bearing", "oil_temperature") - 273.15
+    mu = film_viscosity(res, "bearing")
+    oil = oil_by_name("ISO_VG46")
+    np.testing.assert_allclose(mu, [oil.viscosity(t) for t in T], rtol=1e-12)  # the oil's law at T
+    assert mu[-1] < 0.9 * mu[0]  # the oil heated: a constant μ would be ≥ 10 % off
+    # the film force the kernel recorded (with μ of its memory) against the film model's Python
+    # API at the same states with film_viscosity: equal; with μ(T_in) it would be ≥ 10 % off
+    st = {k: v[1:] for k, v in film_states(res, "bearing").items()}  # sample 0: centred, ξ = 0
+    wj = res.y[1:, len(res.y[0]) // 2 + 2]
+    gdot = 0.5 * (wj - st["xi_Omega"] / st["xi"])  # ξΩ = ξ(ω_J + ω_B − 2γ̇), ω_B = 0 [T14]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # short film at L/D = 1
+        f = film_forces("short", st["xi"], st["xi_dot"], st["gamma"], gdot, wj, 0.0, mu[1:], L, R, C)
+    fx, fy = res.element("bearing", "Fx")[1:], res.element("bearing", "Fy")[1:]
+    scale = np.max(np.hypot(fx, fy))
+    np.testing.assert_allclose(f["Fx"], fx, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(f["Fy"], fy, rtol=0, atol=1e-9 * scale)
+    assert np.all(film_outputs(res, "bearing")["p_max"][1:] > 0.0)  # a loaded film everywhere

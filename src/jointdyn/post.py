@@ -90,6 +90,16 @@ def film_states(res, element: str) -> dict:
     return out
 
 
+def film_viscosity(res, element: str) -> np.ndarray:
+    """Film viscosity μ [Pa·s] of journal bearing ``element`` at every sample: its constant
+    ``viscosity``, or with a lumped oil temperature μ(T) from the element's memory, the value
+    the film used over the step that reached the sample [T311]."""
+    el = res.system.elements[res._element(element)[0]]
+    if getattr(el, "thermal", None) is not None:
+        return np.array(res.memory(element, "viscosity"), dtype=float)
+    return np.full(len(res.t), float(el.viscosity))
+
+
 def film_outputs(res, element: str) -> dict:
     """Pressure-related outputs of a lubricated bearing at every sample, from the film model it
     ran with [T76, T81–T83]: ``p_max`` [Pa], ``theta_pmax`` [deg] (angle of the peak pressure in
@@ -108,7 +118,7 @@ def film_outputs(res, element: str) -> dict:
         raise ValueError(f"element {element!r} is a {type(el).__name__}, not a lubricated JournalBearing")
     name, fm = film_name(el.film), film_model(el.film)
     st = film_states(res, element)
-    mu, R, L = el.viscosity, el.journal_radius, el.length
+    mu, R, L = film_viscosity(res, element), el.journal_radius, el.length
     c = el.bearing_radius - el.journal_radius  # the clearance [m]
     p = np.zeros(FILM_WIDTH)
     p[: len(fm.PARAMS)] = params_of(fm)
@@ -118,11 +128,11 @@ def film_outputs(res, element: str) -> dict:
     for i in range(nt):
         x, a, b = min(st["xi"][i], 1.0 - 1e-9), st["xi_dot"][i], st["xi_Omega"][i]
         if name == "finite":
-            pm, tp, te, qs = finite_outputs(x, a, b, mu, R, L, c, p, tab)
+            pm, tp, te, qs = finite_outputs(x, a, b, mu[i], R, L, c, p, tab)
         elif name == "short":
-            pm, tp, _, te, qs = short_pi_outputs(x, a, b, mu, R, L, c)
+            pm, tp, _, te, qs = short_pi_outputs(x, a, b, mu[i], R, L, c)
         else:  # long models: the π-film's pressure (Ott approximates the same film, [T165])
-            pm, tp, _, te = long_pi_outputs(x, a, b, mu, R, c)
+            pm, tp, _, te = long_pi_outputs(x, a, b, mu[i], R, c)
             qs = np.nan
         out["p_max"][i], out["side_flow"][i] = pm, qs
         # θ from the maximum film -> bushing frame: α = θ + γ + π [T76]

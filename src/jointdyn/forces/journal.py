@@ -229,8 +229,9 @@ class JournalBearing:
     """R_J [m], < R_B"""
     length: float
     """L [m], > 0"""
-    viscosity: float
-    """μ [Pa·s], > 0"""
+    viscosity: float | None = None
+    """μ [Pa·s], > 0; required unless ``thermal`` is set (then omitted: the film follows μ(T) of
+    the oil [T311])"""
     film: object = "alshaer2005"
     """film model: a name in ``FILM_MODELS`` or an instance of a registered model"""
     contact: object | None = None
@@ -251,7 +252,7 @@ class JournalBearing:
     (``forces.mixed.GreenwoodTrippContact``) [T314]; None: smooth surfaces"""
     thermal: object | None = None
     """lumped oil temperature (``forces.thermal.LumpedOil``) [T310]; the film's viscosity then
-    follows μ(T) of its oil and ``viscosity`` is unused; None: constant ``viscosity``"""
+    follows μ(T) of its oil (omit ``viscosity``); None: constant ``viscosity``"""
     code: ClassVar[int] = JOURNAL
     centred: ClassVar[bool] = True
     REAL: ClassVar[Layout] = REAL
@@ -293,7 +294,17 @@ class JournalBearing:
                     raise ValueError(f"{o}.{field} = {v!r}: valid: {sorted(registry)}")
                 v.validate()
         check_finite(o, "length", self.length, "m", "> 0", lambda v: v > 0)
-        check_finite(o, "viscosity", self.viscosity, "Pa·s", "> 0", lambda v: v > 0)
+        if self.thermal is None or self.viscosity is not None:
+            if self.viscosity is None:
+                raise ValueError(f"{o}.viscosity [Pa·s]: required (> 0) unless thermal is set")
+            check_finite(o, "viscosity", self.viscosity, "Pa·s", "> 0", lambda v: v > 0)
+        if self.thermal is not None and self.viscosity is not None:
+            warnings.warn(
+                f"{o}: viscosity = {self.viscosity!r} [Pa·s] is unused: with thermal the film follows "
+                f"μ(T) of {self.thermal.oil} from T_in = {self.thermal.inlet_temp!r} °C [T311]; omit it",
+                PhysicsWarning,
+                stacklevel=2,
+            )
         check_finite(
             o,
             "asperity_height",

@@ -8,6 +8,15 @@ from jointdyn.forces.contact_laws import NONE as NO_CONTACT
 from jointdyn.forces.friction_laws import NONE as NO_FRICTION
 
 
+def _viscosity(el, thermal) -> float:
+    """μ [Pa·s] packed into the element row: the constant one, or with ``thermal`` μ(T_in) of
+    its oil at T(t₀) (the kernel then reads μ(T) from memory [T311])."""
+    mu = getattr(el, "viscosity", None)
+    if mu is None:
+        return thermal.memory0()["viscosity"] if thermal is not None else 0.0
+    return mu
+
+
 def pack_journal(el, tables: list, body_index) -> tuple[dict, dict, dict]:
     """Element-specific slots (ints, reals, blocks) of a journal element's declared layouts; film
     and asperity tables are appended to ``tables`` and referenced by index."""
@@ -35,7 +44,7 @@ def pack_journal(el, tables: list, body_index) -> tuple[dict, dict, dict]:
         "bearing_radius": el.bearing_radius,
         "journal_radius": el.journal_radius,
         "length": getattr(el, "length", 0.0),
-        "viscosity": getattr(el, "viscosity", 0.0),
+        "viscosity": _viscosity(el, thermal),
         "clearance": el.clearance,
         "asperity_height": getattr(el, "asperity_height", 0.0),
         "onset_tolerance": el.onset_tolerance,

@@ -58,7 +58,7 @@ def pressure_figure_at(res, element: str, crank_angle_deg: float):
     the bushing and p(θ, z), from the 2-D Reynolds solver at the bearing's L/D with the run's
     film state (Swift–Stieber rupture unless the bearing's ``finite`` model uses Gümbel) [T70–T76]."""
     from jointdyn.film.models import film_model, film_name
-    from jointdyn.post import film_states
+    from jointdyn.post import film_states, film_viscosity
 
     el = res.system.elements[res._element(element)[0]]
     ang = np.degrees(res.crank_angle() - res.crank_angle()[0])
@@ -78,7 +78,7 @@ def pressure_figure_at(res, element: str, crank_angle_deg: float):
         min(st["xi"][i], 0.999),
         st["xi_dot"][i],
         st["xi_Omega"][i],
-        el.viscosity,
+        film_viscosity(res, element)[i],
         el.journal_radius,
         el.length,
         el.clearance,

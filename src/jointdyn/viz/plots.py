@@ -85,7 +85,9 @@ def describe(res, sep: str = "\n") -> str:
     for n, e in zip(s.element_names, s.elements):
         if hasattr(e, "clearance"):
             p = f"{n}: c = {e.clearance * 1e3:.3g} mm"
-            if hasattr(e, "viscosity"):
+            if getattr(e, "thermal", None) is not None:
+                p += f", μ(T) of {e.thermal.oil}, film {e.film}"
+            elif hasattr(e, "viscosity"):
                 p += f", μ = {e.viscosity:.3g} Pa·s, film {e.film}"
             parts.append(p)
     return head + (sep + sep.join(parts) if parts else "")
