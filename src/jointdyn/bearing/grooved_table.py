@@ -14,6 +14,7 @@ from jointdyn.film.field import peak_of, rupture_of
 from jointdyn.film.grooved import GROOVED_MESH, Grooves, equilibrium
 from jointdyn.film.jfo import flows
 
+EPS_MAX = 0.99  # the largest ε of the grooved operating point [T342]
 _K = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
 
 
@@ -74,4 +75,92 @@ def grooved_table(
     out = {c: np.array([r[c] for r in rows]) for c in rows[0]}
     if coefficients:
         out.update(numeric_coefficients(cavitation, ld, eps, grooves, mesh))
+    return out
+
+
+def grooved_equilibrium(
+    load: float,
+    speed: float,
+    radius: float,
+    length: float,
+    clearance: float,
+    viscosity: float,
+    cavitation: str,
+    grooves: int,
+    width_deg: float,
+    feed_pressure: float = 0.0,
+    mesh=GROOVED_MESH,
+) -> dict:
+    """Steady operating point of the axially grooved bearing for a load W and journal speed N,
+    the load direction fixed relative to the grooves [T246, T342]: solves S(ε) = S_given with S of
+    the grooved equilibrium, the supply pressure made dimensionless at this speed and viscosity
+    [T245].
+
+    load, speed, radius, length, clearance, viscosity  W [N], N [rev/s], R, L, c [m], μ [Pa·s], > 0
+    grooves, width_deg, feed_pressure                   as :func:`jointdyn.film.grooved.axial_grooves`
+                                                        (feed_pressure p_f [Pa], gauge, ≥ 0)
+    Returns the keys of :func:`jointdyn.bearing.design.equilibrium` (``flow`` the total supply
+    [m³/s]) plus ``groove_flow_<k>`` [m³/s] (k = 1 at +90° from the load) and ``fill_min`` [-]."""
+    from scipy.optimize import brentq
+
+    from jointdyn.bearing.design import check_positive
+    from jointdyn.film.grooved import axial_grooves
+
+    check_positive(
+        ("load", load, "N"),
+        ("speed", speed, "rev/s"),
+        ("radius", radius, "m"),
+        ("length", length, "m"),
+        ("clearance", clearance, "m"),
+        ("viscosity", viscosity, "Pa·s"),
+    )
+    if clearance >= radius:  # [T284]
+        raise ValueError(f"clearance = {clearance!r} [m]: must be < radius = {radius!r} (c < R)")
+    if not (math.isfinite(feed_pressure) and feed_pressure >= 0.0):
+        raise ValueError(f"feed_pressure = {feed_pressure!r} [Pa]: must be finite and >= 0 (gauge)")
+    omega = 2.0 * math.pi * speed
+    feed = feed_pressure * clearance**2 / (6.0 * viscosity * omega * radius**2)  # P_f [T245]
+    supply = axial_grooves(grooves, width_deg, feed)
+    ld = length / (2.0 * radius)
+    S_given = (radius / clearance) ** 2 * viscosity * speed / (load / (2.0 * radius * length))
+
+    def row(eps):
+        try:
+            tab = grooved_table(cavitation, ld, [eps], supply, mesh, False)
+        except RuntimeError as err:  # the attitude iteration [T246]
+            raise ValueError(f"load = {load!r} [N]: no grooved equilibrium found ({err})") from None
+        return {k: float(v[0]) for k, v in tab.items()}
+
+    def g(u):  # S falls with ε; log S is nearly linear in u = −ln(1 − ε)
+        return math.log(row(1.0 - math.exp(-u))["sommerfeld"]) - math.log(S_given)
+
+    lo, hi = 1e-3, -math.log(1.0 - EPS_MAX)  # the 2° mesh resolves h_min = 0.01c
+    if g(hi) > 0.0:
+        raise ValueError(
+            f"load = {load!r} [N]: the grooved bearing cannot carry it below eps = {EPS_MAX} "
+            f"(S = {S_given:.4g} < S(eps = {EPS_MAX}) = {math.exp(g(hi)) * S_given:.4g})"
+        )
+    if g(lo) < 0.0:
+        raise ValueError(
+            f"load = {load!r} [N]: too light, eps < 1e-3 (S = {S_given:.4g}); the film is Petroff's"
+        )
+    eps = 1.0 - math.exp(-brentq(g, lo, hi, xtol=1e-12, rtol=1e-10))
+    r = row(eps)
+    T = r["friction_variable"] * load * clearance  # (R/c)f = T/(W c) [T77]
+    q = radius * clearance * speed * length  # flow variable Q/(R c N L) [T77]
+    out = {
+        "eps": eps,
+        "attitude_deg": r["attitude_deg"],
+        "h_min": clearance * (1.0 - eps),
+        "friction_torque": T,
+        "power_loss": T * omega,
+        "peak_pressure": load / (2.0 * radius * length) / r["pressure_ratio"],
+        "theta_pmax_deg": r["theta_pmax_deg"],
+        "theta_end_deg": r["theta_end_deg"],
+        "flow": r["flow_variable"] * q,
+        "side_flow": r["flow_variable"] * q * r["side_flow_ratio"],
+        "sommerfeld": S_given,
+        "fill_min": r["fill_min"],
+    }
+    out.update({k: v * q for k, v in r.items() if k.startswith("groove_flow_")})
     return out

@@ -36,7 +36,7 @@ def _floats(text: str, name: str) -> list[float]:
         ) from None
 
 
-def _grooves(n, width_deg, feed_pa, extra, load):
+def _grooves(n, width_deg, feed_pa, extra):
     """The :class:`Grooves` of the options (None without --grooves) [T244–T245]."""
     if n is None:
         if feed_pa != 0.0:
@@ -44,8 +44,6 @@ def _grooves(n, width_deg, feed_pa, extra, load):
         return None
     from jointdyn.film.grooved import axial_grooves
 
-    if load is not None:
-        raise ValueError("--load with --grooves: the grooved operating point is not available yet")
     if not (math.isfinite(feed_pa) and feed_pa >= 0.0):
         raise ValueError(f"--feed-pressure {feed_pa!r} [Pa]: must be finite and >= 0 (gauge)")
     feed = 0.0
@@ -97,7 +95,7 @@ def bearing_table_cmd(
     # Ctrl-C/SIGTERM as a flag, checked per ε: one line, exit 130/143, never a traceback [T332]
     with _one_line_errors():
         eps_list = _floats(eps, "eps")
-        supply = _grooves(grooves, groove_width, feed_pressure, (speed, radius, clearance, viscosity), load)
+        supply = _grooves(grooves, groove_width, feed_pressure, (speed, radius, clearance, viscosity))
         tab = bearing_table(model, cavitation, ld, eps_list, grooves=supply)
         op = None
         extra = (speed, radius, clearance)
@@ -121,6 +119,27 @@ def bearing_table_cmd(
                 )
             else:
                 op = equilibrium(load, speed, radius, length, clearance, viscosity, model, cavitation)
+        elif supply is not None and load is not None:  # the grooved operating point [T342]
+            if any(v is None for v in (*extra, viscosity)) or oil is not None:
+                raise ValueError(
+                    "--load with --grooves needs --speed, --radius, --clearance and --viscosity (SI)"
+                )
+            from jointdyn.bearing.design import _check_model
+            from jointdyn.bearing.grooved_table import grooved_equilibrium
+
+            _, cav = _check_model(model, cavitation)
+            op = grooved_equilibrium(
+                load,
+                speed,
+                radius,
+                ld * 2.0 * radius,
+                clearance,
+                viscosity,
+                cav,
+                grooves,
+                groove_width,
+                feed_pressure,
+            )
         interrupts.check()  # a signal during the operating point: nothing is written
     buf = io.StringIO()
     w = csv.writer(buf)
@@ -150,6 +169,7 @@ def bearing_table_cmd(
             "flow": "m³/s",
             "side_flow": "m³/s",
             "sommerfeld": "-",
+            "fill_min": "-",
             "t_eff": "°C",
             "delta_t": "K",
             "viscosity": "Pa·s",
@@ -157,7 +177,8 @@ def bearing_table_cmd(
         console.print("operating point:")
         for k, v in op.items():
             if isinstance(v, float) and math.isfinite(v):
-                console.print(f"  {k} = {v:.6g} " + escape(f"[{units[k]}]"))
+                unit = "m³/s" if k.startswith("groove_flow_") else units[k]
+                console.print(f"  {k} = {v:.6g} " + escape(f"[{unit}]"))
 
 
 app.command("bearing-table")(bearing_table_cmd)
