@@ -231,7 +231,11 @@ def _film_force_help() -> str:
 def film_force_cmd(
     states: Path = typer.Argument(..., help="CSV with a header naming the state columns listed above"),
     model: str = typer.Option("alshaer2005", help="film model: " + ", ".join(FILM_MODELS)),
-    cavitation: str = typer.Option(None, help="finite model: gumbel (default) or reynolds (Swift–Stieber)"),
+    cavitation: str = typer.Option(
+        None,
+        help="finite model: gumbel (default), reynolds (Swift–Stieber) or jfo (mass-conserving, steady: "
+        "fed at the maximum film, 0 < xi <= 0.99, ξ̇ on frozen content)",
+    ),
     out: Path = typer.Option(None, help="output CSV (default: stdout)"),
 ):
     from jointdyn.film.table import film_force_table
@@ -240,9 +244,14 @@ def film_force_cmd(
         if cavitation is not None:
             if model != "finite":
                 raise ValueError(f"--cavitation: applies to the 'finite' model only (got --model {model!r})")
-            from jointdyn.film.models import Finite
+            if cavitation == "jfo":  # the steady line-fed film, state by state [T343]
+                from jointdyn.film.jfo_states import SteadyJFO
 
-            film_force_table(states, Finite(cavitation=cavitation), out)
+                film_force_table(states, SteadyJFO(), out)
+            else:
+                from jointdyn.film.models import Finite
+
+                film_force_table(states, Finite(cavitation=cavitation), out)
         else:
             film_force_table(states, model, out)
 

@@ -13,11 +13,13 @@ import inspect
 import math
 import re
 import sys
+from functools import partial
 from pathlib import Path
 
 import numpy as np
 
 from jointdyn.core import atomic, interrupts
+from jointdyn.film.jfo_states import SteadyJFO
 from jointdyn.film.models import FILM_MODELS, film_forces
 
 BLOCK = 4096  # rows per evaluation: memory stays O(BLOCK) whatever the file size
@@ -79,13 +81,14 @@ def _forces(model, data: np.ndarray, start: int, src) -> dict:
         i = bad[0]
         ci, ri = float(c[i]), float(r[i])
         raise ValueError(f"{src}: row {start + i}: clearance = {ci!r} [m] must be < radius = {ri!r} (c < R)")
+    forces = model.forces if isinstance(model, SteadyJFO) else partial(film_forces, model)
     try:
-        return film_forces(model, *data.T)
+        return forces(*data.T)
     except ValueError:
         pass
     for r in range(data.shape[0]):  # find the 1-based row of the first bad state
         try:
-            film_forces(model, *data[r : r + 1].T)
+            forces(*data[r : r + 1].T)
         except ValueError as err:
             raise ValueError(f"{src}: row {start + r}: {str(err).replace(' at index 0', '')}") from None
     raise AssertionError("unreachable")  # pragma: no cover
@@ -93,8 +96,11 @@ def _forces(model, data: np.ndarray, start: int, src) -> dict:
 
 def film_force_table(src, model, out=None) -> int:
     """Read states from CSV ``src``, write them with ``Fr, Ft, Fx, Fy`` [N] appended to ``out``
-    (a path, written atomically; None = stdout). Returns the number of rows."""
-    if type(model) not in FILM_MODELS.values() and (not isinstance(model, str) or model not in FILM_MODELS):
+    (a path, written atomically; None = stdout). ``model``: a film model (name or instance) or
+    the steady mass-conserving film :class:`~jointdyn.film.jfo_states.SteadyJFO` [T343]. Returns
+    the number of rows."""
+    known = type(model) in FILM_MODELS.values() or isinstance(model, SteadyJFO)
+    if not known and (not isinstance(model, str) or model not in FILM_MODELS):
         raise ValueError(f"--model {model!r} is unknown; valid: {', '.join(FILM_MODELS)}")
     src = Path(src)
     if src.is_dir():
