@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from jointdyn.core import interrupts
+from jointdyn.core.checks import check
 from jointdyn.film import grooved
 from jointdyn.film.coefficients import stability_threshold
 from jointdyn.film.field import peak_of, rupture_of
@@ -103,17 +104,17 @@ def grooved_equilibrium(
     [m³/s]) plus ``groove_flow_<k>`` [m³/s] (k = 1 at +90° from the load) and ``fill_min`` [-]."""
     from scipy.optimize import brentq
 
-    from jointdyn.bearing.design import check_positive
     from jointdyn.film.grooved import axial_grooves
 
-    check_positive(
+    for name, v, unit in (
         ("load", load, "N"),
         ("speed", speed, "rev/s"),
         ("radius", radius, "m"),
         ("length", length, "m"),
         ("clearance", clearance, "m"),
         ("viscosity", viscosity, "Pa·s"),
-    )
+    ):
+        check(name, v, unit, "> 0")
     if clearance >= radius:  # [T284]
         raise ValueError(f"clearance = {clearance!r} [m]: must be < radius = {radius!r} (c < R)")
     if not (math.isfinite(feed_pressure) and feed_pressure >= 0.0):
