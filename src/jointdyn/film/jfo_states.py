@@ -43,7 +43,8 @@ class SteadyJFO:
         bad = np.flatnonzero(~((x > 0.0) & (x <= XI_MAX)))
         if bad.size:
             raise ValueError(
-                f"xi = {float(x[bad[0]])!r} [-]: the steady jfo film needs 0 < xi <= {XI_MAX} at index {bad[0]}"
+                f"xi = {float(x[bad[0]])!r} [-]: the steady jfo film needs 0 < xi <= {XI_MAX} "
+                f"at index {bad[0]}"
             )
         fr, ft = np.empty(x.size), np.empty(x.size)
         for k in range(x.size):
