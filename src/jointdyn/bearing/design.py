@@ -162,7 +162,7 @@ def bearing_table(
     dynamic coefficients and Lund's stability threshold (``COEFFICIENT_COLUMNS``, dimensionless
     k = Kc/W, c = Ccω/W, M̄ = mcω²/W; [T107–T108]): from the exact Jacobian of the kernel twin
     for the films in ``COEFFICIENT_MODEL``, by central differences for the other ``finite``
-    films [T247] (none for ``long`` with ``reynolds``).
+    films [T247] and for ``long`` with ``reynolds`` [T344].
 
     model       "finite" (2-D Reynolds [T70–T72]), "long" (L/D → ∞ [T78]) or "short" (Ocvirk [T79]);
                 a film name of ``FILM_ALIASES`` (``alshaer2005`` = long with gumbel) is accepted
@@ -202,6 +202,17 @@ def bearing_table(
 
         coef = [dynamic_coefficients(twin, float(ld), float(x)) for x in e]
         out.update({c: np.array([d[c] for d in coef]) for c in COEFFICIENT_COLUMNS})
+    elif model == "long":  # Reynolds' film end: the 1-D free-boundary film differenced [T344]
+        from jointdyn.film.coefficients import stability_threshold
+        from jointdyn.film.long_dynamic import long_reynolds_coefficients
+
+        rows_c = []
+        for x in e:
+            interrupts.check()  # [T332]
+            c = long_reynolds_coefficients(float(ld), float(x))
+            c.update(stability_threshold(c["K"], c["C"]))
+            rows_c.append(c)
+        out.update({c: np.array([r[c] for r in rows_c]) for c in COEFFICIENT_COLUMNS})
     elif model == "finite":  # the supply line stays where the equilibrium's maximum film is [T247]
         from jointdyn.bearing.grooved_table import numeric_coefficients
 

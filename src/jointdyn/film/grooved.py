@@ -164,20 +164,31 @@ def coefficients(ld, eps, cavitation, supply, mesh=GROOVED_MESH, h=STEP) -> dict
     film is). Also ``attitude`` [rad], ``sommerfeld`` [-] and the equilibrium solution."""
     phi, W, sol, prob, fixed, lab = equilibrium(ld, eps, cavitation, supply, mesh)
     s = ("line", phi + math.pi) if supply == "line" else supply
+
+    def film(e, edot):
+        return film_at(ld, e, edot, cavitation, s, mesh, sol.state)[0]
+
+    out = differenced_coefficients(film, eps, phi, W, h)
+    out.update(sommerfeld=2.0 * ld / (math.pi * W))
+    return out
+
+
+def differenced_coefficients(film, eps: float, phi: float, W: float, h: float = STEP) -> dict:
+    """k = Kc/W, c = Ccω/W by central differences of ``film(e, ė)`` → F (2,) [μωR⁴/c²] (load frame
+    (e_L, e_P), e in c, ė in cω) at the equilibrium e = ε(cos φ, sin φ) carrying W̄, steps h·c and
+    h·cω, in the convention of :mod:`.coefficients` (load along −y, rotation from x to y) [T247].
+    Returns kxx … cyy, ``attitude`` φ [rad], ``load`` W̄, ``K`` and ``C`` (2×2)."""
     e0 = np.array([eps * math.cos(phi), eps * math.sin(phi)])
     # project frame: x = e_P (rotation side), y = −e_L (against the load)
     to_load = np.array([[0.0, -1.0], [1.0, 0.0]])  # (e_L, e_P) = to_load @ (x, y)
+    zero = np.zeros(2)
     K = np.empty((2, 2))
     C = np.empty((2, 2))
     for j in range(2):
         d = to_load[:, j] * h
-        Fp = film_at(ld, e0 + d, (0.0, 0.0), cavitation, s, mesh, sol.state)[0]
-        Fm = film_at(ld, e0 - d, (0.0, 0.0), cavitation, s, mesh, sol.state)[0]
-        K[:, j] = -(to_load.T @ (Fp - Fm)) / (2.0 * h * W)
-        Fp = film_at(ld, e0, d, cavitation, s, mesh, sol.state)[0]
-        Fm = film_at(ld, e0, -d, cavitation, s, mesh, sol.state)[0]
-        C[:, j] = -(to_load.T @ (Fp - Fm)) / (2.0 * h * W)
+        K[:, j] = -(to_load.T @ (film(e0 + d, zero) - film(e0 - d, zero))) / (2.0 * h * W)
+        C[:, j] = -(to_load.T @ (film(e0, d) - film(e0, -d))) / (2.0 * h * W)
     names = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
     out = dict(zip(names, [*K.ravel(), *C.ravel()], strict=True))
-    out.update(attitude=phi, sommerfeld=2.0 * ld / (math.pi * W), load=W, K=K, C=C)
+    out.update(attitude=phi, load=W, K=K, C=C)
     return out
