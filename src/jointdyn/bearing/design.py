@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 
+from jointdyn.bearing.operating import dimensional_point
 from jointdyn.core import interrupts
 from jointdyn.film import field as fm
 from jointdyn.film.cavitation import check_cavitation
@@ -291,19 +292,6 @@ def equilibrium(
     check_xi(eps)
     d = steady_quantities(model, cavitation, ld, eps, mesh)
     r = _row(eps, ld, d)
-    omega = 2.0 * math.pi * speed
-    T = r["friction_variable"] * load * clearance  # (R/c)f = T/(W c)
-    Q = r["flow_variable"] * radius * clearance * speed * length
-    return {
-        "eps": eps,
-        "attitude_deg": r["attitude_deg"],
-        "h_min": clearance * (1.0 - eps),
-        "friction_torque": T,
-        "power_loss": T * omega,
-        "peak_pressure": load / (2.0 * radius * length) / r["pressure_ratio"],
-        "theta_pmax_deg": r["theta_pmax_deg"],
-        "theta_end_deg": r["theta_end_deg"],
-        "flow": Q,
-        "side_flow": Q * r["side_flow_ratio"],
-        "sommerfeld": S_given,
-    }
+    return dimensional_point(
+        r, eps, load, speed, radius, clearance=clearance, length=length, sommerfeld=S_given
+    )

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 
+from jointdyn.bearing.operating import dimensional_point
 from jointdyn.core import interrupts
 from jointdyn.core.checks import check
 from jointdyn.film import grooved
@@ -147,21 +148,8 @@ def grooved_equilibrium(
         )
     eps = 1.0 - math.exp(-brentq(g, lo, hi, xtol=1e-12, rtol=1e-10))
     r = row(eps)
-    T = r["friction_variable"] * load * clearance  # (R/c)f = T/(W c) [T77]
+    out = dimensional_point(r, eps, load, speed, radius, length, clearance, S_given)
+    out["fill_min"] = r["fill_min"]
     q = radius * clearance * speed * length  # flow variable Q/(R c N L) [T77]
-    out = {
-        "eps": eps,
-        "attitude_deg": r["attitude_deg"],
-        "h_min": clearance * (1.0 - eps),
-        "friction_torque": T,
-        "power_loss": T * omega,
-        "peak_pressure": load / (2.0 * radius * length) / r["pressure_ratio"],
-        "theta_pmax_deg": r["theta_pmax_deg"],
-        "theta_end_deg": r["theta_end_deg"],
-        "flow": r["flow_variable"] * q,
-        "side_flow": r["flow_variable"] * q * r["side_flow_ratio"],
-        "sommerfeld": S_given,
-        "fill_min": r["fill_min"],
-    }
     out.update({k: v * q for k, v in r.items() if k.startswith("groove_flow_")})
     return out
