@@ -52,7 +52,7 @@ def _child(argv: list[str], report: str) -> None:
     from numba.core import caching
     from numba.core import event as ev
 
-    compiles: list[tuple[str, float, float, int]] = []
+    compiles: list[tuple[str, float, float, int, str]] = []
     loads = [0, 0.0]
 
     class Listener(ev.Listener):
@@ -68,7 +68,8 @@ def _child(argv: list[str], report: str) -> None:
             if self.stack:
                 self.stack[-1][1] += dt
             f = event.data["dispatcher"].py_func
-            compiles.append((f"{f.__module__}.{f.__qualname__}", dt, dt - child, len(self.stack)))
+            sig = ", ".join(str(a) for a in event.data["args"])
+            compiles.append((f"{f.__module__}.{f.__qualname__}", dt, dt - child, len(self.stack), sig))
 
     ev.register("numba:compile", Listener())
     load = caching.Cache.load_overload
@@ -155,7 +156,7 @@ def _warm_simulate(src: Path, cache: str, joint: str, revs: str, repeat: int) ->
 def _compile_table(compiles, top: int) -> None:
     per = defaultdict(lambda: [0, 0.0, 0.0])
     mods = defaultdict(float)
-    for name, inc, exc, depth in compiles:
+    for name, inc, exc, depth, _sig in compiles:
         x = per[name]
         x[0] += 1
         x[1] += exc

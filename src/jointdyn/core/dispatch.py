@@ -134,6 +134,29 @@ def law_switch(name: str, family: int, registry: Mapping, args: Sequence[str], f
     return generated_overload(name, f"laws, code, {arglist}", build)
 
 
+def law_present(laws, slot: int) -> bool:
+    """Whether the optional piece in place ``slot`` of a laws type (after the three families,
+    e.g. a journal element's oil temperature or asperity contact) is compiled: its entry is not
+    None, or the laws carry no entry for it (None, omitted, an integer identity, three families
+    only: every piece) [T322]."""
+    if isinstance(laws, types.BaseTuple) and len(laws.types) > slot:
+        return not isinstance(laws.types[slot], (types.NoneType, types.Omitted))
+    return True
+
+
+def law_gate(name: str, slot: int, kernel: Callable, args: Sequence[str], default: str):
+    """A compiled ``name(laws, *args)``: ``kernel(*args)`` if the piece ``slot`` is present in
+    ``laws`` (:func:`law_present`), else the expression ``default`` (in the names of ``args``)
+    without compiling ``kernel`` [T322]."""
+    arglist = ", ".join(args)
+
+    def build(laws):
+        body = f"_kernel({arglist})" if law_present(laws, slot) else default
+        return generated(name, [f"def {name}(laws, {arglist}):", f"    return {body}"], {"_kernel": kernel})
+
+    return generated_overload(name, f"laws, {arglist}", build)
+
+
 def law_tuple(registry: Mapping, codes: Sequence[int]) -> tuple:
     """The type-level set of the laws of ``registry`` with ``codes`` (negative: none), with their
     identities (:func:`identity` of the class and its kernels)."""

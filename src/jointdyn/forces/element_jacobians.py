@@ -46,10 +46,10 @@ from jointdyn.forces.journal import (
     TABLE,
     THERMAL,
     V_MIN,
-    VISC,
     XI_GUARD,
     journal_kinematics,
 )
+from jointdyn.forces.journal_pieces import asperity_on, film_viscosity
 from jointdyn.forces.kinds import kind_switch
 from jointdyn.forces.simple_jacobians import (
     harmonic_torque_dt,
@@ -75,7 +75,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = np.sqrt(ex * ex + ey * ey)
-    if e == 0.0 or ip[ASPERITY] != 0:  # asperity tables [T315]: differenced
+    if e == 0.0 or asperity_on(laws, ip[ASPERITY]):  # asperity tables [T315]: differenced
         return 1
     ux = ex / e
     uy = ey / e
@@ -109,7 +109,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     F = np.empty(2)
     DF = np.empty((2, 12))
     xi = e / c
-    mu_f = mem[VISC] if ip[THERMAL] != 0 else r[MU]  # μ(T) frozen between accepted steps [T311]
+    mu_f = film_viscosity(laws, ip[THERMAL], mem, r[MU])  # μ(T) frozen between accepted steps [T311]
     if ip[FILM] != NO_FILM:
         xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
         xi_f = min(xi, xi_cap, XI_GUARD)

@@ -14,12 +14,13 @@ from __future__ import annotations
 import numpy as np
 from numba import njit, types
 
-from jointdyn.core.dispatch import generated, generated_overload, identity, law_tuple
+from jointdyn.core.dispatch import generated, generated_overload, identity, law_gate, law_tuple
 from jointdyn.core.layout import BODY_I, BODY_J, TYPE
 from jointdyn.film.models import FILM_MODELS
 from jointdyn.forces.contact_laws import CONTACT_LAWS
 from jointdyn.forces.friction_laws import FRICTION_LAWS
 from jointdyn.forces.journal import (
+    ASPERITY,
     CONTACT,
     FILM,
     FRICTION,
@@ -40,11 +41,12 @@ from jointdyn.forces.journal import (
     penetration,
 )
 from jointdyn.forces.journal import NO_CONTACT as _NO_CONTACT
+from jointdyn.forces.journal_pieces import ASPERITY_PIECE, THERMAL_PIECE, thermal_limit
 from jointdyn.forces.kinds import kind_gate, kind_loop, kinds_tuple
 from jointdyn.forces.springs import SPRING_DAMPER, SpringDamper, spring_damper
 from jointdyn.forces.tabulated import TABLE as TAB_TABLE
 from jointdyn.forces.tabulated import TABULATED_FORCE, TabulatedForce, tabulated_force
-from jointdyn.forces.thermal import thermal_step, thermal_step_limit
+from jointdyn.forces.thermal import thermal_step
 from jointdyn.forces.torsion import (
     HARMONIC_TORQUE,
     TORSION_SPRING,
@@ -102,18 +104,19 @@ _force_loop = kind_loop(
 
 def journal_laws(fint: np.ndarray) -> tuple:
     """The laws of the journal rows of an element table as the type-level tuple (film, contact,
-    friction) of :func:`jointdyn.core.dispatch.law_tuple` [T229]."""
+    friction, oil temperature, asperity contact): the laws the rows use
+    (:func:`jointdyn.core.dispatch.law_tuple`) [T229] and 1/None for the optional pieces
+    (``forces.journal_pieces``) [T322]. Only these are compiled; a command running several
+    models compiles one set for all of them (:func:`jointdyn.multibody.system.shared_kinds`)."""
     rows = fint[fint[:, TYPE] == JOURNAL]
 
     def family(registry, column):
-        # every built-in law is always present (identity 1), as in the hand-written chains: one
-        # specialisation serves every combination of built-in laws (compiling one per
-        # combination doubled the first run of `reproduce`, 89 -> 159 s CPU); a law from user
-        # code adds its own identity
-        builtin = {cls.code for cls in registry.values() if identity(cls) == 1}
-        return law_tuple(registry, sorted(builtin | set(rows[:, column].tolist())))
+        return law_tuple(registry, sorted(set(rows[:, column].tolist())))
 
-    return (family(FILM_MODELS, FILM), family(CONTACT_LAWS, CONTACT), family(FRICTION_LAWS, FRICTION))
+    pieces = tuple(1 if (rows[:, column] != 0).any() else None for column in (THERMAL, ASPERITY))
+    laws = (family(FILM_MODELS, FILM), family(CONTACT_LAWS, CONTACT), family(FRICTION_LAWS, FRICTION))
+    assert len(laws) == THERMAL_PIECE and len(laws) + 1 == ASPERITY_PIECE
+    return (*laws, *pieces)
 
 
 def kinds_of(fint: np.ndarray) -> tuple:
@@ -127,13 +130,34 @@ def kinds_of(fint: np.ndarray) -> tuple:
     return kinds_tuple(codes, tuple(FORCE_KERNELS), ids)
 
 
-def kinds_union(a: tuple, b: tuple) -> tuple:
-    """The kinds of two systems together, entry by entry (:func:`kinds_of`): a kernel set that
-    serves both [T341]. Where both have a kind with different identities (laws from user code),
-    ``a``'s is kept: the second system then compiles its own set, as without the union."""
+def _either(x, y):
+    return x if y is None or x == y else (y if x is None else x)
+
+
+def _laws_union(a: tuple, b: tuple) -> tuple:
+    """The journal laws of two systems together (:func:`journal_laws`): per family the laws of
+    either, per optional piece present in either [T322]."""
     if len(a) != len(b):
         return a
-    return tuple(x if y is None or x == y else (y if x is None else x) for x, y in zip(a, b, strict=True))
+    return tuple(
+        tuple(_either(u, v) for u, v in zip(x, y, strict=True))
+        if isinstance(x, tuple) and isinstance(y, tuple) and len(x) == len(y)
+        else _either(x, y)
+        for x, y in zip(a, b, strict=True)
+    )
+
+
+def kinds_union(a: tuple, b: tuple) -> tuple:
+    """The kinds of two systems together, entry by entry (:func:`kinds_of`): a kernel set that
+    serves both [T341]; for journal elements the laws of both [T322]. Where both have a kind or
+    law with different identities (from user code), ``a``'s is kept: the second system then
+    compiles its own set, as without the union."""
+    if len(a) != len(b):
+        return a
+    return tuple(
+        _laws_union(x, y) if c == JOURNAL and isinstance(x, tuple) and isinstance(y, tuple) else _either(x, y)
+        for c, (x, y) in enumerate(zip(a, b, strict=True))
+    )
 
 
 @njit(cache=True)
@@ -154,19 +178,32 @@ _journal_kind = generated_overload("journal_kind", "kinds", _build_journal_kind)
 
 
 @njit(inline="always")
+def _heat_oil(t, q, qd, mem, k, fint, freal, tables, laws):
+    """The film's loss at the accepted state heats the oil of element k [T311]."""
+    scratch = np.zeros(q.shape[0])
+    out = np.zeros(NOUT)
+    bi, bj = fint[k, BODY_I], fint[k, BODY_J]
+    journal_element(q, qd, mem[k], bi, bj, fint[k], freal[k], tables, scratch, out, laws)
+    return thermal_step(mem[k], freal[k, THERMAL_P0:THERMAL_P1], t, out[O_LOSS])
+
+
+_heat_gate = law_gate(
+    "heat_oil",
+    THERMAL_PIECE,
+    _heat_oil,
+    ("t", "q", "qd", "mem", "k", "fint", "freal", "tables", "laws_"),
+    "0",
+)
+
+
+@njit(inline="always")
 def _journal_memory(t, q, qd, mem, fint, freal, tables, kinds):
+    laws = _journal_kind(kinds)
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL:
             continue
-        if fint[k, THERMAL] != 0:  # the film's loss at the accepted state heats the oil [T311]
-            scratch = np.zeros(q.shape[0])
-            out = np.zeros(NOUT)
-            bi, bj = fint[k, BODY_I], fint[k, BODY_J]
-            journal_element(
-                q, qd, mem[k], bi, bj, fint[k], freal[k], tables, scratch, out, _journal_kind(kinds)
-            )
-            if thermal_step(mem[k], freal[k, THERMAL_P0:THERMAL_P1], t, out[O_LOSS]) != 0:
-                return THERMAL_RANGE + k
+        if fint[k, THERMAL] != 0 and _heat_gate(laws, t, q, qd, mem, k, fint, freal, tables, laws) != 0:
+            return THERMAL_RANGE + k
         delta, dd = penetration(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k])
         if fint[k, CONTACT] == _NO_CONTACT:
             if delta >= 0.0:  # ξ ≥ 1 with no contact law (c_c = c here)
@@ -198,11 +235,12 @@ def _journal_onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
 
 
 @njit(inline="always")
-def _journal_step_limit(q, qd, mem, fint, freal):
+def _journal_step_limit(q, qd, mem, fint, freal, kinds):
+    laws = _journal_kind(kinds)
     h = 1e300
     for k in range(fint.shape[0]):
         if fint[k, TYPE] == JOURNAL and fint[k, THERMAL] != 0:
-            h = min(h, thermal_step_limit(mem[k], freal[k, THERMAL_P0:THERMAL_P1]))
+            h = min(h, thermal_limit(laws, mem[k], freal[k, THERMAL_P0:THERMAL_P1]))
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == _NO_CONTACT or mem[k, IN_CONTACT] > 0.5:
             continue
         delta, dd = penetration(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k])
@@ -219,7 +257,7 @@ _onset_gate = kind_gate(
     "onset_gate", JOURNAL, _journal_onset_fraction, ("q0", "qd0", "q1", "qd1", "mem", "fint", "freal"), "1.0"
 )
 _step_gate = kind_gate(
-    "step_gate", JOURNAL, _journal_step_limit, ("q", "qd", "mem", "fint", "freal"), "1e300"
+    "step_gate", JOURNAL, _journal_step_limit, ("q", "qd", "mem", "fint", "freal", "kinds_"), "1e300"
 )
 
 
@@ -243,7 +281,7 @@ def step_limit(q, qd, mem, fint, freal, kinds=None):
     """Largest step that cannot carry a free journal through its gap at the current approach
     speed [s]: (gap + tol)/δ̇ for elements not in contact, and the oil temperature's step limit
     [T312] (inf if none)."""
-    return _step_gate(kinds, q, qd, mem, fint, freal)
+    return _step_gate(kinds, q, qd, mem, fint, freal, kinds)
 
 
 def element_tables(elements, body_index, point_of):

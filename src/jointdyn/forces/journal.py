@@ -40,11 +40,12 @@ from jointdyn.forces.contact_laws import NONE as NO_CONTACT
 from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_dispatch
 from jointdyn.forces.friction_laws import NONE as NO_FRICTION
 from jointdyn.forces.journal_pack import pack_journal
-from jointdyn.forces.mixed import ASPERITY_MODELS, asperity_loads
+from jointdyn.forces.journal_pieces import asperity_terms, film_viscosity
+from jointdyn.forces.mixed import ASPERITY_MODELS
 from jointdyn.forces.mixed import WIDTH as ASPERITY_WIDTH
 from jointdyn.forces.thermal import BASE as THERMAL_BASE
 from jointdyn.forces.thermal import MEMORY as THERMAL_MEMORY
-from jointdyn.forces.thermal import THERMAL_MODELS, VISC
+from jointdyn.forces.thermal import THERMAL_MODELS
 from jointdyn.forces.thermal import WIDTH as THERMAL_WIDTH
 from jointdyn.forces.transfer import apply_pair, pair_power
 
@@ -370,7 +371,7 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
     power = 0.0
     ffx = 0.0
     ffy = 0.0
-    mu_f = mem[VISC] if ip[THERMAL] != 0 else r[MU]  # μ(T) of the oil temperature [T311]
+    mu_f = film_viscosity(laws, ip[THERMAL], mem, r[MU])  # μ(T) of the oil temperature [T311, T322]
     if ip[FILM] != NO_FILM:
         xi_cap = (c - r[H_ASP]) / c if ip[CONTACT] != NO_CONTACT else XI_GUARD
         xi_f = min(xi, xi_cap, XI_GUARD)
@@ -379,11 +380,8 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
         fr, ft = film_dispatch(
             laws, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
         )
-        fa = 0.0
-        tb = 0.0
-        if ip[ASPERITY] != 0:  # asperities in parallel with the film, boundary friction [T314]
-            fa, wa = asperity_loads(xi, tables[ip[ASPERITY]], tables[ip[ASPERITY] + 1])
-            tb = r[R_J] * r[ASP_P0] * math.tanh((wj - wi) * r[R_J] / r[ASP_P0 + 1]) * wa
+        # asperities in parallel with the film, boundary friction [T314, T322]
+        fa, tb = asperity_terms(laws, ip[ASPERITY], xi, wj - wi, tables, r[R_J], r[ASP_P0], r[ASP_P0 + 1])
         ffx = (fr + fa) * ux + ft * tx
         ffy = (fr + fa) * uy + ft * ty
         # film force at the journal centre, reaction through the same point [T8, T15]

@@ -358,8 +358,10 @@ def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
     from jointdyn.studies.runs import model_system
 
     runs = {}
-    # the ideal-joint case compiles the journal cases' kernel set: one dopri5 chain, not two [T341]
-    with shared_kinds(model_system("slider-crank", {"joint": "dry"})[0]):
+    # every case runs with the kernel set of all the cases' joints and laws: the ideal-joint case
+    # one dopri5 chain with the dry case, the two films one radau5 chain [T322, T341]
+    joints = sorted({c.joint for c in cases})
+    with shared_kinds(*(model_system("slider-crank", {"joint": j})[0] for j in joints)):
         for case in cases:
             cb = (lambda f, c=case: progress(c.name, f)) if progress else None
             res, cols, summ = run_case(case, revs, progress=cb)
