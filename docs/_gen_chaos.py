@@ -43,7 +43,7 @@ def poincare(revs: int = 220, transient: int = 20):
     for joint, label, kw in POINCARE_CASES:
         sec = poincare_section(joint, kw, revs, transient)
         secs[label] = sec
-        x, y = sec.values["ex_over_c"], sec.values["ey_over_c"]
+        x, y = sec.values["ex_bushing_over_c"], sec.values["ey_bushing_over_c"]
         print(
             f"poincare {joint}: {x.size} points, spread of ex/c {x.max() - x.min():.2g}, ey/c {y.max() - y.min():.2g}"
         )
