@@ -211,7 +211,7 @@ def test_cli_poincare_and_spectrum(tmp_path):
     with open(out / "timeseries.csv", newline="") as f:
         ts = list(csv.DictReader(f))
     col = {k.split(" [")[0]: k for k in ts[0]}
-    t_run = np.array([float(r[col["t"]]) for r in ts])
+    t_run = np.array([float(r[col["time"]]) for r in ts])
     for row in csv.DictReader(rows):
         i = int(np.argmin(np.abs(t_run - float(row["t"]))))
         assert abs(t_run[i] - float(row["t"])) < 1e-9  # a section time is an output sample
@@ -291,7 +291,7 @@ def test_sweep_array_output_is_the_runs_own_section(tmp_path):
     poincare = {"transient_revs": 1, "record_revs": 2, "section_angle": 0.0}
     spec = SweepSpec(base=base, grid={"clearance": [3e-4]}, arrays={"poincare": poincare})
     ds = run_sweep(spec, tmp_path / "s", workers=1)
-    assert ds["poincare_ex_over_c"].dims == ("clearance", "rev") and list(ds["rev"].values) == [1, 2]
+    assert ds["poincare_ex_bushing_over_c"].dims == ("clearance", "rev") and list(ds["rev"].values) == [1, 2]
     res, _, _ = run_shipped(
         "slider-crank", "dry", 3, model_kw={"clearance": 3e-4}, rtol=1e-7, atol=1e-10, samples_per_rev=72
     )
