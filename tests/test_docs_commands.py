@@ -5,8 +5,9 @@ the comment lines of examples/ (``# jointdyn …``, ``# Run: jointdyn …``). De
 ``jointdyn`` command is parsed by the CLI's own parser exactly as written (command, options,
 choices, types, required arguments), the files it names exist, each ``python -m MODULE``
 names a module that exists, and each ``python -c "…"`` line runs from the repository root. Slow
-tier (``-m slow``): every command without a placeholder is executed, in reading order, in a scratch directory holding the repository's ``examples/``, and
-must exit 0; then each page's ```python blocks run as one script there.
+tier (``-m slow``): every command without a placeholder is executed, in reading order, in a scratch
+directory holding the repository's ``examples/``, and must exit 0; then each page's ```python
+blocks run as one script there.
 """
 
 from __future__ import annotations
