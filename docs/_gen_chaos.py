@@ -43,9 +43,10 @@ def poincare(revs: int = 220, transient: int = 20):
     for joint, label, kw in POINCARE_CASES:
         sec = poincare_section(joint, kw, revs, transient)
         secs[label] = sec
-        x, y = sec.values["ex_over_c"], sec.values["ey_over_c"]
+        x, y = sec.values["ex_bushing_over_c"], sec.values["ey_bushing_over_c"]
         print(
-            f"poincare {joint}: {x.size} points, spread of ex/c {x.max() - x.min():.2g}, ey/c {y.max() - y.min():.2g}"
+            f"poincare {joint}: {x.size} points, spread of ex/c {x.max() - x.min():.3g},"
+            f" ey/c {y.max() - y.min():.3g} (bushing frame)"
         )
     plot_sections(
         secs, FIG / "chaos_poincare.png", "stroboscopic sections at crank angle 0, c = 0.5 mm, 5000 rpm"

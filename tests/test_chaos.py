@@ -1,5 +1,6 @@
 """Chaos tools: Lyapunov exponents against closed forms, sections, spectra, ensembles, CLI."""
 
+import csv
 import json
 import math
 from pathlib import Path
@@ -13,7 +14,7 @@ from jointdyn.io.modelfile import load_model
 from jointdyn.models import slider_crank as sc
 from jointdyn.studies.ensemble import band, convergence, revolution_stats
 from jointdyn.studies.lyapunov import batch_stderr, benettin, system_lyapunov
-from jointdyn.studies.poincare import journal_relative_state, plane_crossing, stroboscopic
+from jointdyn.studies.poincare import bushing_frame, journal_relative_state, plane_crossing, stroboscopic
 from jointdyn.studies.runs import run_shipped
 from jointdyn.studies.spectra import amplitude_spectrum, run_spectra
 
@@ -113,11 +114,19 @@ def test_journal_relative_velocity_matches_finite_differences():
         )
         st = journal_relative_state(res, "piston_pin")
         assert np.allclose(st["ex"], res.element("piston_pin", "ex"), atol=1e-15)
+        b = bushing_frame(st)  # the rod-eye frame [T350]: u = A(φ_rod)ᵀ e, u̇ with the frame's rotation
+        c = res.clearance("piston_pin")
+        ub = res.orbit("piston_pin", frame="bushing")
+        assert np.allclose(b["ex"] / c, ub[0], atol=1e-12) and np.allclose(b["ey"] / c, ub[1], atol=1e-12)
+        for frame, s in (("world", st), ("bushing", b)):
+            for k in ("ex", "ey"):
+                fd = np.gradient(s[k], res.t)
+                err[spr, frame, k] = (
+                    np.abs(fd[5:-5] - s[k + "_dot"][5:-5]).max() / np.abs(s[k + "_dot"]).max()
+                )
+    for frame in ("world", "bushing"):
         for k in ("ex", "ey"):
-            fd = np.gradient(st[k], res.t)
-            err[spr, k] = np.abs(fd[5:-5] - st[k + "_dot"][5:-5]).max() / np.abs(st[k + "_dot"]).max()
-    for k in ("ex", "ey"):
-        assert err[1800, k] / err[3600, k] > 2.8 and err[3600, k] < 1e-3
+            assert err[1800, frame, k] / err[3600, frame, k] > 2.8 and err[3600, frame, k] < 1e-3, (frame, k)
 
 
 def test_spectrum_of_the_perfect_slider_crank_matches_the_kinematics():
@@ -196,13 +205,24 @@ def test_cli_poincare_and_spectrum(tmp_path):
         r = runner.invoke(app, cmd)
         assert r.exit_code == 0, r.output
     rows = (out / "poincare.csv").read_text().splitlines()
-    assert rows[0].startswith("t,ex_over_c") and len(rows) == 1 + 6  # revolutions 1…6 at angle 0
-    r = runner.invoke(app, ["poincare", str(out), "--transient-revs", "1", "--plane", "ey_over_c=0"])
+    assert rows[0].startswith("t,ex_bushing_over_c") and len(rows) == 1 + 6  # revolutions 1…6 at angle 0
+    # the section is the saved run's bushing-frame orbit at the section times [T290, T350]: an
+    # independent path (the run's own timeseries.csv columns, written when the run was saved)
+    with open(out / "timeseries.csv", newline="") as f:
+        ts = list(csv.DictReader(f))
+    col = {k.split(" [")[0]: k for k in ts[0]}
+    t_run = np.array([float(r[col["time"]]) for r in ts])
+    for row in csv.DictReader(rows):
+        i = int(np.argmin(np.abs(t_run - float(row["t"]))))
+        assert abs(t_run[i] - float(row["t"])) < 1e-9  # a section time is an output sample
+        for k in ("ex_bushing_over_c", "ey_bushing_over_c"):
+            assert float(row[k]) == pytest.approx(float(ts[i][col[k]]), rel=1e-8, abs=1e-9), k
+    r = runner.invoke(app, ["poincare", str(out), "--transient-revs", "1", "--plane", "ey_bushing_over_c=0"])
     assert r.exit_code == 0, r.output
     rows = [list(map(float, x.split(","))) for x in (out / "poincare.csv").read_text().splitlines()[1:]]
     assert rows and all(abs(row[2]) < 1e-12 for row in rows)  # ey/c interpolated onto the plane
     r = runner.invoke(app, ["poincare", str(out), "--plane", "colour=0"])
-    assert r.exit_code == 2 and "ey_over_c" in r.output
+    assert r.exit_code == 2 and "ey_bushing_over_c" in r.output
     assert (out / "spectrum.png").exists()
 
 
@@ -218,7 +238,7 @@ def test_cli_bifurcation_small(tmp_path):
     import xarray as xr
 
     ds = xr.load_dataset(out / "bifurcation.nc", engine="h5netcdf")
-    assert ds["ex_over_c"].shape == (2, 2) and np.isfinite(ds["ex_over_c"]).all()
+    assert ds["ex_bushing_over_c"].shape == (2, 2) and np.isfinite(ds["ex_bushing_over_c"]).all()
     assert (ds["error"] == "").all() and (out / "bifurcation.png").exists()
     f.write_text('[bifurcation]\nparameter = "colour"\nvalues = [1.0]\n')
     r = runner.invoke(app, ["bifurcation", str(f), "--out", str(out)])
@@ -271,12 +291,12 @@ def test_sweep_array_output_is_the_runs_own_section(tmp_path):
     poincare = {"transient_revs": 1, "record_revs": 2, "section_angle": 0.0}
     spec = SweepSpec(base=base, grid={"clearance": [3e-4]}, arrays={"poincare": poincare})
     ds = run_sweep(spec, tmp_path / "s", workers=1)
-    assert ds["poincare_ex_over_c"].dims == ("clearance", "rev") and list(ds["rev"].values) == [1, 2]
+    assert ds["poincare_ex_bushing_over_c"].dims == ("clearance", "rev") and list(ds["rev"].values) == [1, 2]
     res, _, _ = run_shipped(
         "slider-crank", "dry", 3, model_kw={"clearance": 3e-4}, rtol=1e-7, atol=1e-10, samples_per_rev=72
     )
     direct = section_arrays(res, 1, 2, 0.0)
-    for k in ("ex_over_c", "eydot_over_cw", "impacts_per_rev"):
+    for k in ("ex_bushing_over_c", "eydot_bushing_over_cw", "impacts_per_rev"):
         np.testing.assert_array_equal(ds[f"poincare_{k}"].values[0], direct[k])
 
 
@@ -322,6 +342,6 @@ def test_bifurcation_on_a_dask_cluster_equals_the_local_run(tmp_path):
         n_workers=1, threads_per_worker=1, host="127.0.0.1", dashboard_address=None, processes=True
     ) as cluster:
         dask = run_bifurcation(spec, tmp_path / "dask", scheduler=cluster.scheduler_address)
-    for k in ("ex_over_c", "eydot_over_cw", "impacts_per_rev"):
+    for k in ("ex_bushing_over_c", "eydot_bushing_over_cw", "impacts_per_rev"):
         np.testing.assert_array_equal(local[k].values, dask[k].values)
-    assert local["ex_over_c"].shape == (2, 2) and np.isfinite(local["ex_over_c"]).all()
+    assert local["ex_bushing_over_c"].shape == (2, 2) and np.isfinite(local["ex_bushing_over_c"]).all()

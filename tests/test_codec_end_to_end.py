@@ -70,7 +70,7 @@ def test_finite_reynolds_four_bar_runs_loads_plots_and_maps(tmp_path):
     omega = OMEGA
     t = np.array([float(row["t"]) for row in section])
     np.testing.assert_allclose(t, [0.0, 2 * math.pi / omega, 4 * math.pi / omega], rtol=1e-9, atol=1e-12)
-    ex, ey = res.orbit("pin", frame="world")
+    ex, ey = res.orbit("pin", frame="bushing")  # the element's outputs rotated by −φ_i [T290, T350]
     at = [int(np.argmin(np.abs(res.t - tk))) for tk in t]
-    got = np.array([[float(row["ex_over_c"]), float(row["ey_over_c"])] for row in section])
+    got = np.array([[float(row["ex_bushing_over_c"]), float(row["ey_bushing_over_c"])] for row in section])
     np.testing.assert_allclose(got, np.column_stack([ex[at], ey[at]]), rtol=1e-9, atol=1e-9)

@@ -310,3 +310,26 @@ def test_bearing_table_carries_the_dynamic_coefficients_of_its_film():
         for c in COEFFICIENT_COLUMNS:
             assert tab[c][i] == ref[c]
     assert set(COEFFICIENT_COLUMNS) <= set(bearing_table("long", "reynolds", 1.0, [0.5]))
+
+
+def test_cross_damping_asymmetry_quoted_in_the_theory_is_current():
+    """[T107] explains why c_xy ≠ c_yx for the π-film and the finite Gümbel film (and not for the
+    short bearing) with numbers at ε = 0.6; a stale number fails here (issue 29)."""
+    import re
+    from pathlib import Path
+
+    text = " ".join((Path(__file__).resolve().parents[1] / "docs" / "theory.md").read_text("utf-8").split())
+    num = r"(−?\d+\.\d+)"
+    m = re.search(
+        rf"Measured at ε = 0\.6: alshaer2005 \(long π-film\) c_xy = {num}, c_yx = {num}; finite "
+        rf"\(L/D = 1, Gümbel\) {num} and {num}\. .*? c_xy = c_yx = {num} \(L/D = 0\.25\)",
+        text,
+    )
+    assert m, "the [T107] sentence moved: update this test"
+    quoted = [float(g.replace("−", "-")) for g in m.groups()]
+    a = dynamic_coefficients("alshaer2005", 1.0, 0.6)
+    f = dynamic_coefficients("finite", 1.0, 0.6)
+    s = dynamic_coefficients("short", 0.25, 0.6)
+    now = [a["cxy"], a["cyx"], f["cxy"], f["cyx"], s["cxy"]]
+    assert [round(x, 3) for x in now] == quoted, (now, quoted)
+    assert s["cxy"] == pytest.approx(s["cyx"], rel=1e-9)  # the short bearing keeps the symmetry

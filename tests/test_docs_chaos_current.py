@@ -78,7 +78,7 @@ def test_poincare_spreads_are_current(joint):
     gen = _gen()
     kw = next(k for j, _, k in gen.POINCARE_CASES if j == joint)
     v = gen.poincare_section(joint, kw).values
-    for shown, name in zip(m.groups(), ("ex_over_c", "ey_over_c")):
+    for shown, name in zip(m.groups(), ("ex_bushing_over_c", "ey_bushing_over_c")):
         now = float(v[name].max() - v[name].min())
         digits = len(shown.split("e")[0].replace(".", "").lstrip("0")) or 1
         assert not docs_gen.compare(

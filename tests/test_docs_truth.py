@@ -46,3 +46,38 @@ def test_plot_help_lists_every_thing_it_draws():
     text = CliRunner().invoke(app, ["plot", "--help"], terminal_width=200).output
     for what in ("moment", "orbit", "film", "contact", "energy", "pressure"):
         assert what in text, what
+
+
+VENV = "python3 -m venv .venv && . .venv/bin/activate"
+
+
+def _bash_blocks(text: str) -> list[str]:
+    return [b.strip() for b in re.findall(r"^```bash\n(.*?)^```", text, re.S | re.M)]
+
+
+def test_ci_run_is_what_the_readme_says():
+    """README: `.ci/run` installs chromium when it is missing, then runs exactly the second command
+    (issue 29: the description was not exact). The script's command line is the README's test
+    block verbatim, and its only other action is the chromium install the README names."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    blocks = _bash_blocks(readme)
+    test_cmd = next(b for b in blocks if "pytest" in b)
+    lines = [ln.strip() for ln in (ROOT / ".ci" / "run").read_text(encoding="utf-8").splitlines()]
+    code = [ln for ln in lines if ln and not ln.startswith("#")]
+    assert code[-1] == test_cmd
+    others = [ln for ln in code[:-1] if not ln.startswith(("set -", "cd ", "if ", "fi", "||", "("))]
+    assert others == [], others  # nothing else runs
+    assert "chromium" in "".join(code) and "`.ci/run` installs Debian's `chromium`" in " ".join(
+        readme.split()
+    )
+    assert "runs exactly the second command" in " ".join(readme.split())
+
+
+def test_every_install_page_makes_the_venv_first_and_states_the_test_duration():
+    """The README, the docs home and getting started all say to make a virtual environment first
+    (PEP 668) with the same line, and state what the test command costs."""
+    for page in ("README.md", "docs/index.md", "docs/getting-started.md"):
+        text = " ".join((ROOT / page).read_text(encoding="utf-8").split())
+        assert VENV in text and "PEP 668" in text, page
+        assert "1000 CPU-seconds" in text and "3 min warm" in text, page
+    assert _bash_blocks((ROOT / "README.md").read_text(encoding="utf-8"))[0] == VENV

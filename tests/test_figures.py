@@ -218,3 +218,41 @@ def test_styles_stay_distinct_for_many_curves():
     first6 = [st[f"case{k}"][0] for k in range(6)]
     assert len(set(first6)) == 6  # six extra curves: six different colours
     assert st["perfect"] == style.PAPER_STYLE["perfect"] and st["dry"] == style.PAPER_STYLE["dry"]
+
+
+def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
+    """The interactive page draws each case in the colour of its PNG curves (read back from the
+    drawn matplotlib lines, not from the shared palette), and every report figure has a caption
+    that says what it shows, not its file name (issue 29)."""
+    import json
+
+    from matplotlib.colors import to_hex
+
+    pytest.importorskip("plotly")
+    from jointdyn.viz import iplots
+    from jointdyn.viz.reproduce_figures import caption
+
+    labels = {runs[n][3].label: n for n in runs}
+    drawn, names = {}, []
+
+    def emit(name, f):
+        names.append(name)
+        for ax in f.axes:
+            for ln in ax.get_lines():
+                if ln.get_label() in labels:
+                    drawn.setdefault(labels[ln.get_label()], set()).add(to_hex(ln.get_color()))
+
+    fig = plt.figure()
+    try:
+        draw_all(fig, runs, REVS, emit)
+    finally:
+        plt.close(fig)
+    assert set(drawn) == set(runs) and all(len(c) == 1 for c in drawn.values()), drawn  # one colour a case
+    html = iplots.reproduction_html(runs, tmp_path / "i.html", REVS).read_text(encoding="utf-8")
+    head = "Plotly.newPlot('moment', "
+    data, _ = json.JSONDecoder().raw_decode(html, html.index(head) + len(head))
+    shown = {labels[d["name"]]: to_hex(d["line"]["color"]) for d in data}
+    assert shown == {n: next(iter(c)) for n, c in drawn.items()}
+    for name in names:
+        text = caption(name.removesuffix(".png"), runs)
+        assert text.endswith(".") and len(text.split()) >= 8 and name.removesuffix(".png") not in text, name

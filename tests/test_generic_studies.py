@@ -97,7 +97,7 @@ def test_poincare_and_spectrum_of_a_model_file_run(four_bar, tmp_path):
     r = runner.invoke(app, ["poincare", str(out), "--transient-revs", "1"])
     assert r.exit_code == 0, r.output
     rows = (out / "poincare.csv").read_text().splitlines()
-    assert rows[0].startswith("t,ex_over_c") and len(rows) == 1 + 3  # the motor at 2π, 4π, 6π
+    assert rows[0].startswith("t,ex_bushing_over_c") and len(rows) == 1 + 3  # the motor at 2π, 4π, 6π
     t = [float(x.split(",")[0]) for x in rows[1:]]
     assert t == pytest.approx([2 * math.pi / OMEGA * k for k in (1, 2, 3)], rel=1e-12)
     r = runner.invoke(app, ["spectrum", str(out), "--transient-revs", "1", "--body", "rocker"])
@@ -123,12 +123,14 @@ def test_bifurcation_over_a_model_file_key(four_bar, tmp_path):
     r = runner.invoke(app, ["bifurcation", str(f), "--out", str(out), "--workers", "1"])
     assert r.exit_code == 0, r.output
     ds = xr.load_dataset(out / "bifurcation.nc", engine="h5netcdf")
-    assert (ds["error"] == "").all() and ds["ex_over_c"].shape == (2, 2)
+    assert (ds["error"] == "").all() and ds["ex_bushing_over_c"].shape == (2, 2)
     # each value's section is the one of a direct run of 3 revolutions at that viscosity
     run = tmp_path / "direct"
     _run(four_bar, run, "--set", "elements.pin.viscosity=0.1", *_longer(four_bar, 3))
     direct = section_arrays(load_run(run), 1, 2, 0.0)
-    np.testing.assert_allclose(ds["ex_over_c"].values[1], direct["ex_over_c"], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(
+        ds["ex_bushing_over_c"].values[1], direct["ex_bushing_over_c"], rtol=0, atol=1e-12
+    )
 
 
 def test_lyapunov_and_ensemble_count_the_model_files_revolutions(four_bar, tmp_path):

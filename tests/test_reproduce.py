@@ -56,7 +56,9 @@ def test_report_renders_with_images_in_headless_browser(quick_run, tmp_path):
     probe = (
         "<script>window.addEventListener('load',()=>{const n=[...document.images]"
         ".filter(i=>i.complete&&i.naturalWidth>0).length;document.body.setAttribute('data-loaded',n);"
-        "document.body.setAttribute('data-total',document.images.length)});</script></body>"
+        "document.body.setAttribute('data-total',document.images.length);"
+        "document.body.setAttribute('data-sw',document.documentElement.scrollWidth);"
+        "document.body.setAttribute('data-iw',window.innerWidth)});</script></body>"
     )
     test_page = tmp_path / "probe.html"
     test_page.write_text(page.replace("</body>", probe))
@@ -73,11 +75,17 @@ def test_report_renders_with_images_in_headless_browser(quick_run, tmp_path):
         "--virtual-time-budget=10000",
     ]
     dom = subprocess.run(
-        [browser, *flags, "--dump-dom", test_page.as_uri()], capture_output=True, text=True, timeout=120
+        [browser, *flags, "--window-size=1400,1000", "--dump-dom", test_page.as_uri()],
+        capture_output=True,
+        text=True,
+        timeout=120,
     ).stdout
     loaded = int(re.search(r'data-loaded="(\d+)"', dom).group(1))
     total = int(re.search(r'data-total="(\d+)"', dom).group(1))
     assert total >= 8 and loaded == total
+    # issue 29: the summary table overflowed a 1400 px window; nothing may be wider than the window
+    sw, iw = (int(re.search(rf'data-{k}="(\d+)"', dom).group(1)) for k in ("sw", "iw"))
+    assert 0 < sw <= iw, (sw, iw)
     shot = tmp_path / "shot.png"
     subprocess.run(
         [browser, *flags, f"--screenshot={shot}", "--window-size=1200,2000", test_page.as_uri()],

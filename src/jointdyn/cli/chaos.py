@@ -60,12 +60,12 @@ def poincare(
     angle: float = typer.Option(0.0, help="phase of the stroboscopic section in the revolution [deg]"),
     transient_revs: int = typer.Option(10, help="revolutions discarded at the start [rev]"),
     plane: str = typer.Option(
-        None, help="plane-crossing section instead, VARIABLE=LEVEL (e.g. ey_over_c=0; upward crossings)"
+        None, help="plane-crossing section instead, VARIABLE=LEVEL (e.g. ey_bushing_over_c=0: upward)"
     ),
     out: Path = typer.Option(None, help="output directory (default: DIR)"),
 ):
     """Poincaré section (stroboscopic at a phase of the revolution, or a plane crossing) of a
-    journal's relative position and velocity: writes poincare.csv and poincare.png."""
+    journal's relative position and velocity in the bushing frame: writes poincare.csv and poincare.png."""
     from jointdyn.studies.poincare import journal_section, phase, plot_sections
     from jointdyn.studies.saved_runs import load_run
 
@@ -100,7 +100,7 @@ def bifurcation(
     out: Path = typer.Option(Path("out/bifurcation"), help="output directory"),
     workers: int = typer.Option(None, help="local worker processes (default: all cores)"),
     scheduler: str = typer.Option(None, help="Dask scheduler tcp://HOST:PORT (default: local processes)"),
-    variable: str = typer.Option("ex_over_c", help="section variable drawn against the parameter"),
+    variable: str = typer.Option("ex_bushing_over_c", help="section variable drawn against the parameter"),
     resume: bool = typer.Option(False, help="keep the finished values of the same diagram in --out/sweep"),
     overwrite: bool = typer.Option(False, help="replace jointdyn's files of a previous diagram in --out"),
 ):

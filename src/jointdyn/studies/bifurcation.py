@@ -242,7 +242,7 @@ def to_dataset(spec: BifurcationSpec, results: list[dict]):
     return ds
 
 
-def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> None:
+def plot_bifurcation(ds, path, variable: str = "ex_bushing_over_c", title: str = "") -> None:
     """Section values against the parameter (one dot per recorded revolution), and the median
     impacts per revolution."""
     import matplotlib
@@ -265,8 +265,8 @@ def plot_bifurcation(ds, path, variable: str = "ex_over_c", title: str = "") -> 
     xx = np.repeat(x[:, None], v.shape[1], axis=1)
     a1.plot((xx * scale).ravel(), v.ravel(), ",", color="k", alpha=0.6)
     a1.plot((xx * scale).ravel(), v.ravel(), ".", ms=1.2, color="k", alpha=0.4)
-    frame = ", world frame" if variable.startswith(("ex", "ey")) else ""  # the section variables [T290]
-    a1.set_ylabel(f"{variable} at phase {ds.attrs.get('section_angle_deg', 0):g}° [-]{frame}")
+    # the section variables are in the bushing frame [T290, T350]; their names say so
+    a1.set_ylabel(f"{variable} at phase {ds.attrs.get('section_angle_deg', 0):g}° [-]")
     a1.set_title(title or f"bifurcation diagram over {p}")
     imp = ds["impacts_per_rev"].values
     if np.isfinite(imp).any():

@@ -2,9 +2,10 @@
 state-space plane crossing.
 
 The section variables of a journal element are the journal's position relative to the bearing
-centre, e = P_j − P_i (world frame) [m], and its rate ė [m/s], both from the body coordinates
-and velocities at the output samples [T124] (exact at the samples, no finite differences).
-Sections: stroboscopic [T122] or a plane crossing [T123].
+centre, e = P_j − P_i [m], and its rate [m/s], resolved in the bushing's frame (body i) as the
+orbits are [T290, T350], both from the body coordinates and velocities at the output samples
+[T124] (exact at the samples, no finite differences). Sections: stroboscopic [T122] or a plane
+crossing [T123].
 """
 
 from __future__ import annotations
@@ -16,10 +17,14 @@ import numpy as np
 
 from jointdyn.core import atomic
 
+#: the journal-state variables of a section: e/c and ė/(cω) in the bushing frame [T290, T350]
+VARIABLES = ("ex_bushing_over_c", "ey_bushing_over_c", "exdot_bushing_over_cw", "eydot_bushing_over_cw")
+
 
 def journal_relative_state(res, element: str) -> dict[str, np.ndarray]:
     """ex, ey [m] and ex_dot, ey_dot [m/s] of journal element ``element`` at the output samples,
-    world frame, e = P_j − P_i [T124, T1, T2]; plus the clearance c [m] under key ``"c"``."""
+    world frame, e = P_j − P_i [T124, T1, T2]; the bushing body's angle ``phi_i`` [rad] and rate
+    ``phid_i`` [rad/s] (zero for a bushing on the ground); the clearance c [m] under key ``"c"``."""
     s = res.system
     if element not in s.element_names:
         raise KeyError(f"no force element named {element!r}; elements are {list(s.element_names)}")
@@ -45,7 +50,20 @@ def journal_relative_state(res, element: str) -> dict[str, np.ndarray]:
 
     pix, piy, vix, viy = point(bi, xi_i, eta_i)
     pjx, pjy, vjx, vjy = point(bj, xi_j, eta_j)
-    return {"ex": pjx - pix, "ey": pjy - piy, "ex_dot": vjx - vix, "ey_dot": vjy - viy, "c": el.clearance}
+    z = np.zeros_like(res.t)
+    phi_i, phid_i = (z, z) if bi < 0 else (q[:, 3 * bi + 2], qd[:, 3 * bi + 2])
+    e = {"ex": pjx - pix, "ey": pjy - piy, "ex_dot": vjx - vix, "ey_dot": vjy - viy}
+    return e | {"phi_i": phi_i, "phid_i": phid_i, "c": el.clearance}
+
+
+def bushing_frame(st: dict) -> dict[str, np.ndarray]:
+    """The relative state of :func:`journal_relative_state` resolved in the bushing's frame
+    [T290, T350]: u = A(φ_i)ᵀ e [m] and its time derivative u̇ = A(φ_i)ᵀ ė − φ̇_i S u [m/s]
+    (S the rotation by +90°), i.e. u̇_x = (Aᵀė)_x + φ̇_i u_y, u̇_y = (Aᵀė)_y − φ̇_i u_x."""
+    cs, sn, w = np.cos(st["phi_i"]), np.sin(st["phi_i"]), st["phid_i"]
+    ux, uy = cs * st["ex"] + sn * st["ey"], -sn * st["ex"] + cs * st["ey"]
+    ax, ay = cs * st["ex_dot"] + sn * st["ey_dot"], -sn * st["ex_dot"] + cs * st["ey_dot"]
+    return {"ex": ux, "ey": uy, "ex_dot": ax + w * uy, "ey_dot": ay - w * ux}
 
 
 @dataclass(frozen=True)
@@ -115,17 +133,14 @@ def phase(res, driver: str | None = None, period: float | None = None) -> tuple[
 
 
 def journal_series(res, element: str, omega: float) -> dict[str, np.ndarray]:
-    """A journal's relative state [T124]: ex/c, ey/c [-] and ex_dot/(cω), ey_dot/(cω) [-] with
-    ω [rad/s] the speed of the revolution (:func:`phase`)."""
+    """A journal's relative state in the bushing frame [T124, T350]: e_x/c, e_y/c [-] and
+    ė_x/(cω), ė_y/(cω) [-] (:func:`bushing_frame`) with ω [rad/s] the speed of the revolution
+    (:func:`phase`), under the names of ``VARIABLES``."""
     st = journal_relative_state(res, element)
-    c = st.pop("c")
-    w = abs(omega)
-    return {
-        "ex_over_c": st["ex"] / c,
-        "ey_over_c": st["ey"] / c,
-        "exdot_over_cw": st["ex_dot"] / (c * w),
-        "eydot_over_cw": st["ey_dot"] / (c * w),
-    }
+    c, w = st["c"], abs(omega)
+    b = bushing_frame(st)
+    x, y, xd, yd = VARIABLES
+    return {x: b["ex"] / c, y: b["ey"] / c, xd: b["ex_dot"] / (c * w), yd: b["ey_dot"] / (c * w)}
 
 
 def journal_section(
@@ -172,15 +187,15 @@ def plot_sections(sections: dict, path, title: str = "") -> None:
         ax = axes[0, col]
         th = np.linspace(0, 2 * np.pi, 361)
         ax.plot(np.cos(th), np.sin(th), color="0.6", lw=0.8, label="clearance circle")
-        ax.plot(v["ex_over_c"], v["ey_over_c"], ".", ms=3, color="C0")
+        ax.plot(v["ex_bushing_over_c"], v["ey_bushing_over_c"], ".", ms=3, color="C0")
         ax.set_aspect("equal")
-        ax.set_xlabel("e_x / c [-], world frame")  # the section variables' frame [T290]
-        ax.set_ylabel("e_y / c [-], world frame")
+        ax.set_xlabel("e_x / c [-], bushing frame")  # the section variables' frame [T290, T350]
+        ax.set_ylabel("e_y / c [-], bushing frame")
         ax.set_title(f"{name}: {len(sec.t)} points")
         ax = axes[1, col]
-        ax.plot(v["ex_over_c"], v["exdot_over_cw"], ".", ms=3, color="C1")
-        ax.set_xlabel("e_x / c [-], world frame")
-        ax.set_ylabel("ė_x / (c ω) [-], world frame")
+        ax.plot(v["ex_bushing_over_c"], v["exdot_bushing_over_cw"], ".", ms=3, color="C1")
+        ax.set_xlabel("e_x / c [-], bushing frame")
+        ax.set_ylabel("ė_x / (c ω) [-], bushing frame")
         ax.ticklabel_format(useOffset=False)
     if title:
         fig.suptitle(title)
@@ -188,10 +203,6 @@ def plot_sections(sections: dict, path, title: str = "") -> None:
     with atomic.replacing(path) as tmp:
         fig.savefig(tmp, dpi=120, format="png")
     plt.close(fig)
-
-
-#: the journal-state variables of a section (e/c and ė/(cω), world frame)
-VARIABLES = ("ex_over_c", "ey_over_c", "exdot_over_cw", "eydot_over_cw")
 
 
 def section_arrays(

@@ -65,7 +65,8 @@ __all__ = [
 def case_arrays(res, arrays: dict) -> dict[str, list[float]]:
     """Array outputs of one run (``[output.NAME]`` of the sweep file, ``ARRAY_OUTPUTS``):
     ``poincare`` = the stroboscopic section of a journal element (default: the first) at a phase of
-    the revolution of an angle driver (default: the first) or of an explicit period [T122, T136]."""
+    the revolution of an angle driver (default: the first) or of an explicit period, bushing
+    frame [T122, T136, T350]."""
     out = {}
     if "poincare" in arrays:
         from jointdyn.studies.poincare import section_arrays
