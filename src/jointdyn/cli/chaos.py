@@ -264,6 +264,8 @@ def spectrum(
     from jointdyn.studies.spectra import UNITS, plot_spectra, run_spectra
 
     try:
+        if not (math.isfinite(max_harmonic) and max_harmonic > 0):  # before any work
+            raise ValueError(f"--max-harmonic = {max_harmonic!r} [-]: must be finite and > 0")
         res = load_run(directory)
         sp = run_spectra(res, transient_revs, driver, body, "" if element is None else element)
     except (ValueError, KeyError) as err:

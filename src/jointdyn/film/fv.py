@@ -92,7 +92,7 @@ def check_xi(xi: float) -> None:
 
 def check_ld(lam: float) -> None:
     if not (math.isfinite(lam) and lam > 0.0):
-        raise ValueError(f"L/D = {lam!r} [-]: must be finite and > 0")
+        raise ValueError(f"ld = L/D = {lam!r} [-]: must be finite and > 0")
 
 
 def assemble(

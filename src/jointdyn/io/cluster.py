@@ -28,11 +28,30 @@ POLL = 0.25  # [s] signal and completion polling
 ASK_TIMEOUT = 5.0  # [s] one question to a running scheduler
 
 
+def check_address(address: str) -> None:
+    """``address`` must be ``tcp://HOST:PORT`` (or ``tls://``), PORT in 1…65535: refused before
+    any connection attempt (Dask's own error came after the connect timeout, followed by an
+    ignored traceback of its half-made client)."""
+    from urllib.parse import urlsplit
+
+    try:
+        u = urlsplit(address)
+        port = u.port
+    except ValueError:
+        port = None
+        u = None
+    if u is None or u.scheme not in ("tcp", "tls") or not u.hostname or port is None or not 0 < port < 65536:
+        raise ValueError(
+            f"--scheduler {address!r}: expected tcp://HOST:PORT (PORT 1…65535), e.g. tcp://127.0.0.1:8786"
+        )
+
+
 def connect(address: str, timeout: float | None = None):
     """A Dask client of the scheduler at ``address`` (tcp://HOST:PORT), or one
     ``ConnectionError`` line after ``timeout`` [s] (None: ``CONNECT_TIMEOUT``); a signal stops
     the wait within ``POLL``."""
     timeout = CONNECT_TIMEOUT if timeout is None else timeout
+    check_address(address)
     try:
         from distributed import Client
     except ImportError:

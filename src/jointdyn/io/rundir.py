@@ -313,9 +313,14 @@ class OutputDir:
         kept = [p.name for p in entries if p.name not in tops]
         clash = [n for n in kept if any(fnmatch.fnmatch(n, pat) for pat in expect)]
         if clash:
+            why = (  # listed but now a link or special file: never removed through [T335]
+                "is listed in its manifest but is now a link or special file, which jointdyn never removes"
+                if clash[0] in listed
+                else "jointdyn did not write (not in its manifest)"
+            )
             raise OutputError(
-                f"{self.option} {self.path}: holds {', '.join(clash[:5])}, which jointdyn did not write "
-                "(not in its manifest) and this command would replace; move it or choose another directory"
+                f"{self.option} {self.path}: holds {', '.join(clash[:5])}, which {why} and this command "
+                "would replace; move it or choose another directory"
             )
         for p in doomed:
             p.unlink(missing_ok=True)

@@ -245,6 +245,9 @@ def simulate(
     after SIGINT/SIGTERM, :class:`~jointdyn.errors.SimulationError` carrying the partial
     results if the integration fails.
     """
+    if not hasattr(system, "y0"):  # e.g. a Model: an AttributeError 'y0' named nothing useful
+        hint = "; call its .compile() first" if hasattr(system, "compile") else ""
+        raise TypeError(f"system: expected a compiled System, got a {type(system).__name__}{hint}")
     with interrupts.catching():
         y = np.array(system.y0 if y0 is None else y0, dtype=float)
         mem = np.array(system.mem0 if mem0 is None else mem0, dtype=float)

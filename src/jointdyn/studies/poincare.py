@@ -160,7 +160,14 @@ def journal_section(
 
     angle, w = phase(res, driver, period)
     series = journal_series(res, journal(res.system, element), w)
+    if not (math.isfinite(transient) and transient >= 0):
+        raise ValueError(f"transient = {transient!r} [s]: must be finite and >= 0")
     keep = res.t >= transient - 1e-12
+    if np.count_nonzero(keep) < 2:  # nothing left to section: one line, not an IndexError
+        raise ValueError(
+            f"transient = {transient:.6g} [s]: the run ends at t = {res.t[-1]:.6g} s; discard less "
+            "(--transient-revs) or run longer"
+        )
     series = {k: v[keep] for k, v in series.items()}
     if plane is not None:
         key, level, direction = plane

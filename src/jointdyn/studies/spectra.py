@@ -8,6 +8,8 @@ periodic signal, rectangular window); the one-sided amplitude of bin m is 2|X_m|
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from jointdyn import post
@@ -51,6 +53,8 @@ def run_spectra(
         element = journals[0] if journals else None
     elif element is not None:
         element = per.journal(res.system, element)
+    if transient_revs < 0:  # b[-1] would be taken as the start: silently the last revolution
+        raise ValueError(f"transient_revs = {transient_revs} [rev]: must be >= 0")
     angle = per.driver_angle(res, driver)
     b = stroboscopic_indices(angle, float(angle[0]))
     if b.size < transient_revs + 2:
@@ -91,6 +95,8 @@ def plot_spectra(spec: dict, path, max_harmonic: float = 40.0, title: str = "") 
     names = [k for k in UNITS if k in spec]
     fig, axes = plt.subplots(len(names), 1, figsize=(8, 2.6 * len(names)), sharex=True, squeeze=False)
     h = spec["harmonic"]
+    if not (math.isfinite(max_harmonic) and max_harmonic > 0):
+        raise ValueError(f"max_harmonic = {max_harmonic!r} [-]: must be finite and > 0")
     keep = (h > 0) & (h <= max_harmonic)
     for ax, k in zip(axes[:, 0], names):
         ax.semilogy(h[keep], np.maximum(spec[k][keep], 1e-300), lw=0.8)

@@ -287,4 +287,25 @@ def validate(spec: SweepSpec) -> tuple[list[dict], dict[int, str]]:
             if str(w.message) not in seen:
                 seen.add(str(w.message))
                 warnings.warn(f"case {i}: {w.message}", w.category, stacklevel=2)
+    _check_invalid(spec, cases, invalid)
     return cases, invalid
+
+
+def _check_invalid(spec: SweepSpec, cases: list[dict], invalid: dict[int, str]) -> None:
+    """Refuse before work [T334] a sweep whose every case is invalid, and a grid value whose
+    every case is invalid (an unknown key, a negative mass): the value, not a combination, is
+    wrong. Combinations invalid only together stay recorded as failed cases."""
+    if not invalid:
+        return
+    if len(invalid) == len(cases):
+        raise ValueError(f"every one of the {len(cases)} cases is invalid; case 0: {invalid[0]}")
+
+    def key(v) -> str:
+        return json.dumps(v, sort_keys=True, default=str)
+
+    for name, values in spec.grid.items():
+        valid = {key(c.get(name)) for i, c in enumerate(cases) if i not in invalid}
+        for v in values:
+            if key(v) not in valid:
+                first = next(i for i, c in enumerate(cases) if key(c.get(name)) == key(v))
+                raise ValueError(f"[grid].{name} = {v!r}: every case with it is invalid; {invalid[first]}")
