@@ -42,7 +42,9 @@ def test_compiled_step_is_the_reference_step(grooves, omega):
         t = n * dt
         e = np.array([0.6 * math.cos(3.0 * t), 0.5 * math.sin(2.0 * t)])
         s = f.step(e, omega, dt, content, warm)
-        P, fill, fx, fy, inflow, side, total, it = jfo_step(e[0], e[1], omega, dt, content, cav, *g.args(), 200)
+        P, fill, fx, fy, inflow, side, total, it = jfo_step(
+            e[0], e[1], omega, dt, content, cav, *g.args(), 200
+        )
         assert it > 0
         F = math.hypot(*s.F)
         assert np.max(np.abs(P - s.P)) < 1e-12 * np.max(s.P)

@@ -166,7 +166,9 @@ def _bmv(B, x, y):
 
 
 @njit(cache=True)
-def jfo_step(ex, ey, omega, dt, content0, cav, nt, nz, cn, sn, cf, sf, cv, dzf, area, fixed, pfix, perm, inv, max_iter):
+def jfo_step(
+    ex, ey, omega, dt, content0, cav, nt, nz, cn, sn, cf, sf, cv, dzf, area, fixed, pfix, perm, inv, max_iter
+):
     """Backward-Euler jfo step [T300, T304] to the journal position (ex, ey) = e/c [-] from the
     cell contents ``content0`` = H⁰θ_f⁰ (N,) [-] over dt > 0 [s] at relative rotation ω [rad/s];
     ``cav`` (N,) bool, natural order: the start cavitated set (warm start), updated in place.
