@@ -5,12 +5,13 @@ cell balances), and its lubricant balance [T301] step by step."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
 
 from jointdyn.film.grooved import Grooves
-from jointdyn.film.jfo_step import geometry, jfo_step
+from jointdyn.film.jfo_step import geometry, jfo_step, step
 from jointdyn.film.jfo_transient import TransientFilm
 
 MESH = (36, 8)
@@ -60,3 +61,34 @@ def test_compiled_step_is_the_reference_step(grooves, omega):
         warm = s.cav
         total0 = total
     assert seen > 0.3  # the path does cavitate the film
+
+
+@pytest.mark.parametrize(
+    "kw, fragment",
+    [
+        ({"dt": 0.0}, "dt = 0.0 [s]"),
+        ({"dt": math.nan}, "dt = nan [s]"),
+        ({"e": (0.8, 0.7)}, "|e|/c"),
+        ({"omega": math.inf}, "omega = inf [rad/s]"),
+        ({"content0": np.ones(5)}, "content0"),
+        ({"cav": np.zeros(288)}, "cav"),
+    ],
+)
+def test_checked_step_names_the_bad_input(kw, fragment):
+    f = TransientFilm(0.5, Grooves((0.0,), 0.2), MESH)
+    g = geometry(f)
+    args = {"e": (0.3, 0.1), "omega": 1.0, "dt": 0.01, "content0": f.flooded((0.3, 0.1))}
+    args["cav"] = np.zeros(args["content0"].size, np.bool_)
+    args.update(kw)
+    with pytest.raises(ValueError, match=re.escape(fragment)):
+        step(g, args["e"], args["omega"], args["dt"], args["content0"], args["cav"])
+
+
+def test_checked_step_is_the_kernel():
+    """The checked entry returns the kernel's result unchanged (same call, same numbers)."""
+    f = TransientFilm(0.5, Grooves((0.0,), 0.2), MESH)
+    g = geometry(f)
+    c0 = f.flooded((0.3, 0.1))
+    a = step(g, (0.5, -0.2), 1.0, 0.01, c0, np.zeros(c0.size, np.bool_))
+    b = jfo_step(0.5, -0.2, 1.0, 0.01, c0, np.zeros(c0.size, np.bool_), *g.args(), 200)
+    assert all(np.array_equal(x, y) for x, y in zip(a, b, strict=True))

@@ -263,3 +263,26 @@ def jfo_step(
             inflow += r1[q] + r2[q] - b0[q]
         content += 2.0 * area[k] * H[k] * th[q]
     return Pn, fn, -6.0 * fxs, -6.0 * fys, inflow, side, content, its
+
+
+def step(geom: Geometry, e, omega: float, dt: float, content0, cav, max_iter: int = 200) -> tuple:
+    """:func:`jfo_step` with its input checked (the compiled kernel itself checks nothing):
+    ValueError naming the parameter for dt ≤ 0 [s], |e|/c ≥ 1 [-], a non-finite ω [rad/s] or
+    arrays of the wrong size; RuntimeError if the active set does not settle in ``max_iter``."""
+    n = geom.nt * geom.nz
+    if not (math.isfinite(dt) and dt > 0.0):
+        raise ValueError(f"dt = {dt!r} [s]: must be finite and > 0")
+    ex, ey = (float(v) for v in e)
+    if not math.hypot(ex, ey) < 1.0:
+        raise ValueError(f"journal position |e|/c = {math.hypot(ex, ey)!r} [-]: must be < 1")
+    if not math.isfinite(omega):
+        raise ValueError(f"omega = {omega!r} [rad/s]: must be finite")
+    c0 = np.ascontiguousarray(content0, dtype=float)
+    if c0.shape != (n,) or not np.all(np.isfinite(c0)) or np.any(c0 < 0.0):
+        raise ValueError(f"content0: needs {n} finite cell contents >= 0 [-] (H·θ_f of the mesh)")
+    if not (isinstance(cav, np.ndarray) and cav.dtype == np.bool_ and cav.shape == (n,)):
+        raise ValueError(f"cav: needs a bool array of {n} cells (updated in place)")
+    out = jfo_step(ex, ey, float(omega), float(dt), c0, cav, *geom.args(), int(max_iter))
+    if out[-1] < 0:
+        raise RuntimeError(f"transient jfo active set did not settle in {max_iter} iterations")
+    return out
