@@ -221,7 +221,7 @@ def test_cli_poincare_and_spectrum(tmp_path):
     assert r.exit_code == 0, r.output
     rows = [list(map(float, x.split(","))) for x in (out / "poincare.csv").read_text().splitlines()[1:]]
     assert rows and all(abs(row[2]) < 1e-12 for row in rows)  # ey/c interpolated onto the plane
-    r = runner.invoke(app, ["poincare", str(out), "--plane", "colour=0"])
+    r = runner.invoke(app, ["poincare", str(out), "--transient-revs", "1", "--plane", "colour=0"])
     assert r.exit_code == 2 and "ey_bushing_over_c" in r.output
     assert (out / "spectrum.png").exists()
 
