@@ -92,9 +92,8 @@ def main(argv=None) -> None:
     trees = ([("before", Path(a.before))] if a.before else []) + [("this", SRC)]
     res = {label: _measure(src, cli) for label, src in trees}
     print(f"jointdyn {' '.join(cli)} --out D   (fresh process, empty cache)")
-    print(
-        f"{'tree':<7} {'wall [s]':>8} {'CPU [s]':>8} {'compiles':>8} {'compile self [s]':>16} {'peak RSS':>9}"
-    )
+    head = f"{'tree':<7} {'wall [s]':>8} {'CPU [s]':>8} {'compiles':>8} {'compile self [s]':>16}"
+    print(f"{head} {'peak RSS':>9}")
     for label, r in res.items():
         total = sum(c[2] for c in r["compiles"])
         print(

@@ -32,3 +32,18 @@ def test_perfect_run_compiled_for_the_journal_kinds_is_bit_identical():
     for name in ("t", "y", "qdd", "lam", "drift"):
         np.testing.assert_array_equal(getattr(together, name), getattr(alone, name), err_msg=name)
     assert together.stats["rhs_evaluations"] == alone.stats["rhs_evaluations"]
+
+
+def test_worker_processes_pack_for_the_parents_shared_kinds():
+    """Pool workers started inside a shared_kinds block use its kinds (so they load the kernels
+    the parent compiled) [T322]; outside one, none."""
+    from jointdyn.io.pool import run_local
+    from jointdyn.multibody.system import shared_kinds_now
+
+    dry, _ = _system("dry")
+    got = {}
+    with shared_kinds(dry):
+        run_local(shared_kinds_now, [("in", ())], 1, got.__setitem__)
+        assert got["in"] == kinds_of(dry.fint)
+    run_local(shared_kinds_now, [("out", ())], 1, got.__setitem__)
+    assert got["out"] is None

@@ -12,10 +12,15 @@ import os
 from collections.abc import Callable, Iterable
 
 
-def worker_init(parent: int) -> None:
+def worker_init(parent: int, kinds: tuple | None = None) -> None:
     """Worker processes ignore Ctrl-C (the parent stops them) and die with their parent
-    (Linux ``PR_SET_PDEATHSIG``), so a killed run leaves no orphans."""
+    (Linux ``PR_SET_PDEATHSIG``), so a killed run leaves no orphans; they pack their systems for
+    the parent's shared ``kinds`` too, if any (its compiled kernels, from the cache) [T322, T341]."""
     import signal
+
+    from jointdyn.multibody.system import share_kinds_in_process
+
+    share_kinds_in_process(kinds)
 
     from jointdyn.io.rundir import close_inherited
 
@@ -40,9 +45,12 @@ def run_local(fn: Callable, calls: Iterable[tuple], workers: int | None, record:
     from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 
     from jointdyn.core import interrupts
+    from jointdyn.multibody.system import shared_kinds_now
 
     ex = ProcessPoolExecutor(
-        max_workers=workers or os.cpu_count(), initializer=worker_init, initargs=(os.getpid(),)
+        max_workers=workers or os.cpu_count(),
+        initializer=worker_init,
+        initargs=(os.getpid(), shared_kinds_now()),
     )
     try:
         pending = {ex.submit(fn, *args): key for key, args in calls}

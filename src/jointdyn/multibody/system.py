@@ -62,6 +62,18 @@ def shared_kinds(*systems: System) -> Iterator[None]:
         _SHARED_KINDS.reset(token)
 
 
+def shared_kinds_now() -> tuple | None:
+    """The kinds of the enclosing :func:`shared_kinds` block, or None (for worker processes)."""
+    return _SHARED_KINDS.get()
+
+
+def share_kinds_in_process(kinds: tuple | None) -> None:
+    """A worker process's systems are packed for ``kinds`` as well (its parent's
+    :func:`shared_kinds_now`), so it loads the kernels its parent compiled [T322]."""
+    if kinds is not None:
+        _SHARED_KINDS.set(kinds)
+
+
 @dataclass(frozen=True)
 class System:
     """Frozen, compiled mechanism. Build it with :meth:`jointdyn.multibody.model.Model.compile`.

@@ -353,19 +353,24 @@ def reproduce_alshaer2005(
 
 
 def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
-    from jointdyn.core import interrupts
     from jointdyn.multibody.system import shared_kinds
     from jointdyn.studies.runs import model_system
 
     runs = {}
-    # every case runs with the kernel set of all the cases' joints and laws: the ideal-joint case
-    # one dopri5 chain with the dry case, the two films one radau5 chain [T322, T341]
+    # every case, and the dry ensemble's workers, run with one kernel set: the union of the
+    # cases' joints and laws [T322, T341] (the kinds-dependent kernels shared by dopri5 and radau5)
     joints = sorted({c.joint for c in cases})
     with shared_kinds(*(model_system("slider-crank", {"joint": j})[0] for j in joints)):
         for case in cases:
             cb = (lambda f, c=case: progress(c.name, f)) if progress else None
             res, cols, summ = run_case(case, revs, progress=cb)
             runs[case.name] = (res, cols, summ, case)
+        _report(od, runs, revs, progress, ensemble)
+    return runs
+
+
+def _report(od, runs: dict, revs: float, progress, ensemble: bool) -> None:
+    from jointdyn.core import interrupts
 
     def put(name: str, data: bytes) -> None:
         interrupts.check()  # Ctrl-C while the report is written stops it (status interrupted)
@@ -419,4 +424,3 @@ def _reproduce_into(od, cases, revs, progress, ensemble: bool = False) -> dict:
     except ImportError:
         pass
     put("summary.md", (summary_markdown(runs) + "\n").encode("utf-8"))
-    return runs
