@@ -222,8 +222,9 @@ def test_styles_stay_distinct_for_many_curves():
 
 def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     """The interactive page draws each case in the colour of its PNG curves (read back from the
-    drawn matplotlib lines, not from the shared palette), and every report figure has a caption
-    that says what it shows, not its file name (issue 29)."""
+    drawn matplotlib lines, not from the shared palette), every legend names cases by their labels
+    (not their ids), and every report figure has a caption that says what it shows, not its file
+    name (issue 29)."""
     import json
 
     from matplotlib.colors import to_hex
@@ -233,10 +234,13 @@ def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     from jointdyn.viz.reproduce_figures import caption
 
     labels = {runs[n][3].label: n for n in runs}
-    drawn, names = {}, []
+    drawn, names, ids = {}, [], []
 
     def emit(name, f):
         names.append(name)
+        legends = [*f.legends, *(ax.get_legend() for ax in f.axes if ax.get_legend())]
+        for t in (t.get_text() for lg in legends for t in lg.get_texts()):  # names, not case ids
+            ids.extend(f"{name}: {t!r}" for n in runs if t == n or t.endswith(f" of {n})"))
         for ax in f.axes:
             for ln in ax.get_lines():
                 if ln.get_label() in labels:
@@ -248,6 +252,7 @@ def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     finally:
         plt.close(fig)
     assert set(drawn) == set(runs) and all(len(c) == 1 for c in drawn.values()), drawn  # one colour a case
+    assert ids == []
     html = iplots.reproduction_html(runs, tmp_path / "i.html", REVS).read_text(encoding="utf-8")
     head = "Plotly.newPlot('moment', "
     data, _ = json.JSONDecoder().raw_decode(html, html.index(head) + len(head))
