@@ -19,8 +19,9 @@ from jointdyn.viz.reproduce_figures import _png, draw_all
 
 CASES = {c.name: c for c in PAPER_CASES + BEYOND_CASES}
 #: the main job's figure set on a short run: the four paper cases and one small-clearance case
-#: (its orbit is a dot at the centre: the zoomed inset)
-SHORT = ("perfect", "dry", "ott", "alshaer2005", "alshaer2005_c0.05mm")
+#: (its orbit is a dot at the centre: the zoomed inset) and the shear case (within 2 % of the π-film:
+#: the longest legend label)
+SHORT = ("perfect", "dry", "ott", "alshaer2005", "alshaer2005_c0.05mm", "alshaer2005_shear")
 REVS = 0.5
 
 
@@ -88,15 +89,20 @@ def _points(ax):
 
 
 def _review(name: str, fig) -> list[str]:
-    """Problems of one drawn figure: a legend over a plotted point, an empty or flat axes, an
-    orbit spanning < 20 % of its axes (main or inset)."""
+    """Problems of one drawn figure: a legend over a plotted point or cut off by the canvas, an
+    empty or flat axes, an orbit spanning < 20 % of its axes (main or inset)."""
     fig.canvas.draw()
     problems = []
     axes = [a for a in fig.axes if a.get_label() != "<colorbar>"]
     axes += [c for a in axes for c in a.child_axes]
     legends = [lg for lg in [*(a.get_legend() for a in axes), *fig.legends] if lg is not None]
+    canvas = fig.bbox
     for lg in legends:
         lb = lg.get_window_extent()
+        if lb.x0 < canvas.x0 - 1 or lb.x1 > canvas.x1 + 1 or lb.y0 < canvas.y0 - 1 or lb.y1 > canvas.y1 + 1:
+            problems.append(
+                f"{name}: legend cut off by the canvas ({lb.x0:.0f}–{lb.x1:.0f} of {canvas.width:.0f} px)"
+            )
         for a in axes:
             p = _points(a)
             hit = (p[:, 0] > lb.x0) & (p[:, 0] < lb.x1) & (p[:, 1] > lb.y0) & (p[:, 1] < lb.y1)
@@ -164,7 +170,7 @@ def test_one_draw_png_is_byte_identical_to_savefig(runs):
         draw_all(fig, runs, REVS, emit)
     finally:
         plt.close(fig)
-    assert len(pairs) == 12  # 4 + 4 moments and orbits of SHORT, overlay, beyond, film, force
+    assert len(pairs) == 13  # 4 moments and 5 orbits of SHORT, overlay, beyond, film, force
     assert [n for n, (a, b) in pairs.items() if a != b] == []
     assert all(a.startswith(b"\x89PNG") for a, _ in pairs.values())
 
@@ -206,6 +212,7 @@ def test_run_figures_and_the_run_orbit_png(runs, tmp_path):
         run = runs["dry" if what == "contact" else "alshaer2005"][0]
         ax = plots.run_figure(run, what)
         try:
+            ax.figure.tight_layout()  # as plot_run does before saving (room for the legend below)
             assert _review(f"plot_{what}", ax.figure) == []
         finally:
             plt.close(ax.figure)

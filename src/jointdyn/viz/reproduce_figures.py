@@ -152,14 +152,18 @@ def _moment(ax, r, label, st, **kw):
 
 
 def _below(fig, ncol: int = 2):
-    """One legend for the whole figure, under its axes (outside every curve)."""
+    """One legend for the whole figure, under its axes (outside every curve), in ``ncol`` columns
+    or in one when that would be wider than the figure (long labels)."""
     handles, labels = [], []
     for ax in fig.axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
-    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
+    lg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
+    if ncol > 1 and lg.get_window_extent(fig.canvas.get_renderer()).width > 0.98 * fig.bbox.width:
+        lg.remove()
+        fig.legend(handles, labels, loc="outside lower center", ncol=1, fontsize=8, frameon=False)
 
 
 def _coincident(curves: dict, tol: float = 0.02) -> dict[str, str]:
