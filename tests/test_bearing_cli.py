@@ -110,3 +110,13 @@ def test_bad_input_exit_2_one_line(extra, msg):
     r = runner.invoke(app, ["bearing-table", *extra])
     assert r.exit_code == 2
     assert msg in r.output.replace("\n", " ")
+
+
+def test_film_names_work_as_table_models_on_the_command_line():
+    """issue 29: `bearing-table --model` takes the film names (alshaer2005 = the long bearing with
+    Gümbel's condition [T21]) as aliases: the same table as the table model's own name."""
+    base = ["bearing-table", "--ld", "1", "--eps", "0.3,0.6"]
+    a = runner.invoke(app, [*base, "--model", "alshaer2005"])
+    b = runner.invoke(app, [*base, "--model", "long", "--cavitation", "gumbel"])
+    assert a.exit_code == 0 and b.exit_code == 0, a.output + b.output
+    assert a.output == b.output and a.output.startswith("eps,ld,sommerfeld,attitude_deg")

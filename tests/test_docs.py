@@ -58,6 +58,15 @@ def test_site_builds_strict_and_tutorials_show_their_figures(tmp_path):
     )
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-6000:]
     assert "WARNING" not in proc.stderr  # --strict would have aborted; belt and braces
+    shown = set()
+    for page in site.rglob("*.html"):  # every figure of every page is there (issue 29: validation's was not)
+        for src in re.findall(r'<img[^>]*src="([^":]+\.png)"', page.read_text(encoding="utf-8")):
+            png = (page.parent / src).resolve()
+            assert png.is_file() and png.read_bytes().startswith(PNG), (
+                f"{page.relative_to(site)}: {src} missing"
+            )
+            shown.add(png.relative_to(site.resolve()).as_posix())
+    assert "figures/validation_raimondi_boyd.png" in shown  # drawn by docs/hooks/validation_figure.py
     for script in EXAMPLES:
         page = site / "tutorials" / script.stem / "index.html"
         assert page.exists(), f"no tutorial page for {script.name}"

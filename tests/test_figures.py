@@ -19,8 +19,9 @@ from jointdyn.viz.reproduce_figures import _png, draw_all
 
 CASES = {c.name: c for c in PAPER_CASES + BEYOND_CASES}
 #: the main job's figure set on a short run: the four paper cases and one small-clearance case
-#: (its orbit is a dot at the centre: the zoomed inset)
-SHORT = ("perfect", "dry", "ott", "alshaer2005", "alshaer2005_c0.05mm")
+#: (its orbit is a dot at the centre: the zoomed inset) and the shear case (within 2 % of the π-film:
+#: the longest legend label)
+SHORT = ("perfect", "dry", "ott", "alshaer2005", "alshaer2005_c0.05mm", "alshaer2005_shear")
 REVS = 0.5
 
 
@@ -88,15 +89,20 @@ def _points(ax):
 
 
 def _review(name: str, fig) -> list[str]:
-    """Problems of one drawn figure: a legend over a plotted point, an empty or flat axes, an
-    orbit spanning < 20 % of its axes (main or inset)."""
+    """Problems of one drawn figure: a legend over a plotted point or cut off by the canvas, an
+    empty or flat axes, an orbit spanning < 20 % of its axes (main or inset)."""
     fig.canvas.draw()
     problems = []
     axes = [a for a in fig.axes if a.get_label() != "<colorbar>"]
     axes += [c for a in axes for c in a.child_axes]
     legends = [lg for lg in [*(a.get_legend() for a in axes), *fig.legends] if lg is not None]
+    canvas = fig.bbox
     for lg in legends:
         lb = lg.get_window_extent()
+        if lb.x0 < canvas.x0 - 1 or lb.x1 > canvas.x1 + 1 or lb.y0 < canvas.y0 - 1 or lb.y1 > canvas.y1 + 1:
+            problems.append(
+                f"{name}: legend cut off by the canvas ({lb.x0:.0f}–{lb.x1:.0f} of {canvas.width:.0f} px)"
+            )
         for a in axes:
             p = _points(a)
             hit = (p[:, 0] > lb.x0) & (p[:, 0] < lb.x1) & (p[:, 1] > lb.y0) & (p[:, 1] < lb.y1)
@@ -164,7 +170,7 @@ def test_one_draw_png_is_byte_identical_to_savefig(runs):
         draw_all(fig, runs, REVS, emit)
     finally:
         plt.close(fig)
-    assert len(pairs) == 12  # 4 + 4 moments and orbits of SHORT, overlay, beyond, film, force
+    assert len(pairs) == 13  # 4 moments and 5 orbits of SHORT, overlay, beyond, film, force
     assert [n for n, (a, b) in pairs.items() if a != b] == []
     assert all(a.startswith(b"\x89PNG") for a, _ in pairs.values())
 
@@ -206,6 +212,7 @@ def test_run_figures_and_the_run_orbit_png(runs, tmp_path):
         run = runs["dry" if what == "contact" else "alshaer2005"][0]
         ax = plots.run_figure(run, what)
         try:
+            ax.figure.tight_layout()  # as plot_run does before saving (room for the legend below)
             assert _review(f"plot_{what}", ax.figure) == []
         finally:
             plt.close(ax.figure)
@@ -222,8 +229,9 @@ def test_styles_stay_distinct_for_many_curves():
 
 def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     """The interactive page draws each case in the colour of its PNG curves (read back from the
-    drawn matplotlib lines, not from the shared palette), and every report figure has a caption
-    that says what it shows, not its file name (issue 29)."""
+    drawn matplotlib lines, not from the shared palette), every legend names cases by their labels
+    (not their ids), and every report figure has a caption that says what it shows, not its file
+    name (issue 29)."""
     import json
 
     from matplotlib.colors import to_hex
@@ -233,10 +241,13 @@ def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     from jointdyn.viz.reproduce_figures import caption
 
     labels = {runs[n][3].label: n for n in runs}
-    drawn, names = {}, []
+    drawn, names, ids = {}, [], []
 
     def emit(name, f):
         names.append(name)
+        legends = [*f.legends, *(ax.get_legend() for ax in f.axes if ax.get_legend())]
+        for t in (t.get_text() for lg in legends for t in lg.get_texts()):  # names, not case ids
+            ids.extend(f"{name}: {t!r}" for n in runs if t == n or t.endswith(f" of {n})"))
         for ax in f.axes:
             for ln in ax.get_lines():
                 if ln.get_label() in labels:
@@ -248,6 +259,7 @@ def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     finally:
         plt.close(fig)
     assert set(drawn) == set(runs) and all(len(c) == 1 for c in drawn.values()), drawn  # one colour a case
+    assert ids == []
     html = iplots.reproduction_html(runs, tmp_path / "i.html", REVS).read_text(encoding="utf-8")
     head = "Plotly.newPlot('moment', "
     data, _ = json.JSONDecoder().raw_decode(html, html.index(head) + len(head))

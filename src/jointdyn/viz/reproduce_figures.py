@@ -152,14 +152,18 @@ def _moment(ax, r, label, st, **kw):
 
 
 def _below(fig, ncol: int = 2):
-    """One legend for the whole figure, under its axes (outside every curve)."""
+    """One legend for the whole figure, under its axes (outside every curve), in ``ncol`` columns
+    or in one when that would be wider than the figure (long labels)."""
     handles, labels = [], []
     for ax in fig.axes:
         for h, lab in zip(*ax.get_legend_handles_labels()):
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
-    fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
+    lg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
+    if ncol > 1 and lg.get_window_extent(fig.canvas.get_renderer()).width > 0.98 * fig.bbox.width:
+        lg.remove()
+        fig.legend(handles, labels, loc="outside lower center", ncol=1, fontsize=8, frameon=False)
 
 
 def _coincident(curves: dict, tol: float = 0.02) -> dict[str, str]:
@@ -271,7 +275,7 @@ def _film(fig, runs, last, st, one, emit) -> None:
     h = {n: last[n].element("piston_pin", "h_min") * 1e6 for n in lub}
     same = _coincident(h)
     for k, n in enumerate(lub):
-        label = runs[n][3].label + (f" (within 2 % of {same[n]})" if n in same else "")
+        label = runs[n][3].label + (f" (within 2 % of {runs[same[n]][3].label})" if n in same else "")
         plots.series_vs_angle(
             np.radians(_deg(last[n])),
             h[n],
@@ -320,7 +324,7 @@ def _joint_force(fig, runs, names, last, st, revs, one, emit) -> None:
         r = last[n]
         f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
         x = _deg(r)
-        ax.plot(x, f, color=st[n][0], lw=0.9, label=n)
+        ax.plot(x, f, color=st[n][0], lw=0.9, label=runs[n][3].label)  # the case's name in every figure
         i = int(np.argmax(f))
         ax.plot(x[i], f[i], "v", color=st[n][0], ms=6, label="largest sample in the window")
         step = x[1] - x[0]
@@ -335,5 +339,5 @@ def _joint_force(fig, runs, names, last, st, revs, one, emit) -> None:
         ax.grid(True, alpha=0.3)
     _angle_axis(axs[-1, 0], revs, one)
     fig.suptitle(f"force on the journal (piston pin), magnitude, sampled every {step:.2g}°", fontsize=10)
-    _below(fig, ncol=3)
+    _below(fig)
     emit("joint_force.png", fig)
