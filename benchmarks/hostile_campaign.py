@@ -347,6 +347,11 @@ def _damaged(d: Path, owns: tuple[str, ...], before: dict, after: dict) -> str:
     return ""
 
 
+def _default_sigint() -> None:
+    """A command started from a background job inherits SIGINT ignored: restore the default."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def run_case(c: Case, d: Path, timeout: float) -> tuple[str, str]:
     if c.py:
         code = c.py.replace("\n", "\n    ")
@@ -360,7 +365,7 @@ def run_case(c: Case, d: Path, timeout: float) -> tuple[str, str]:
         cmd = [sys.executable, "-c", "import jointdyn_entry as e; e.main()", *c.argv]
     before = _snapshot(d)
     p = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                         stdin=subprocess.DEVNULL, cwd=d)  # fmt: skip
+                         stdin=subprocess.DEVNULL, cwd=d, preexec_fn=_default_sigint)  # fmt: skip
     try:
         if c.sig:
             time.sleep(c.sig[0])
