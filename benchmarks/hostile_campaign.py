@@ -172,7 +172,8 @@ def _setup(d: Path, base: Path) -> list[Case]:
         Case("model files", "model file links to /dev/zero", ["run", d / "link_zero.toml", *o("r9")],
              word="link_zero"),
         Case("model files", "directory as model file", ["run", d / "sibling", *o("r10")], word="sibling"),
-        Case("model files", "example model file, 0.05 rev", ["run", DRY, "--revs", "0.05", *o("r11")],
+        Case("model files", "example model file, 0.05 rev", ["run", DRY, "--set", "simulation.t_end=0.0006",
+             *o("r11")],
              ok=True, owns=("r11",), check=_finite_summary("r11")),
         # -- bearing physics
         Case("bearing physics", "c > R", [*bt, "--load", "100", *pt[:2], "--radius", "0.01", "--clearance",
@@ -263,6 +264,13 @@ def _setup(d: Path, base: Path) -> list[Case]:
         Case("files", "plot --out into its run directory", ["plot", d / "run_plot", "--out",
              d / "run_plot" / "mine.png"], ok=True, owns=("run_plot",),
              check=_listed("run_plot", "mine.png")),
+        Case("files", "bearing-table --out into a run directory", [*bt, "--eps", "0.5", "--out",
+             d / "run_plot" / "bt.csv"], ok=True, owns=("run_plot",), check=_listed("run_plot", "bt.csv")),
+        Case("files", "stribeck --out into a run directory", [*strib, "--load", "100", "--speeds", "10,100",
+             "--out", d / "run_plot" / "st.csv"], ok=True, owns=("run_plot",),
+             check=_listed("run_plot", "st.png")),
+        Case("files", "film-force --out into a run directory", ["film-force", d / "states.csv", "--out",
+             d / "run_plot" / "ff.csv"], ok=True, owns=("run_plot",), check=_listed("run_plot", "ff.csv")),
         Case("files", "plot --out a FIFO", ["plot", d / "run_plot", "--out", d / "fifo.toml"], word="FIFO"),
         # -- chaos commands
         Case("chaos", "ensemble --rtols 1e-7,1e-7", ["ensemble", "slider-crank", "--rtols", "1e-7,1e-7",

@@ -242,9 +242,14 @@ def film_force_cmd(
                 raise ValueError(f"--cavitation: applies to the 'finite' model only (got --model {model!r})")
             from jointdyn.film.models import Finite
 
-            film_force_table(states, Finite(cavitation=cavitation), out)
-        else:
-            film_force_table(states, model, out)
+            model = Finite(cavitation=cavitation)
+        if out is None:
+            film_force_table(states, model, None)
+            return
+        from jointdyn.io.derived import output_file
+
+        with output_file(out, "film-force") as tmp:  # a run directory's lock and manifest [T338]
+            film_force_table(states, model, tmp)
 
 
 def _doc(obj) -> str:
