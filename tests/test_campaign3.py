@@ -67,7 +67,7 @@ def test_simulating_an_uncompiled_model_names_compile():
         simulate(slider_crank("dry"), SimConfig(t_end=1e-3))
 
 
-@pytest.mark.parametrize("address", ["banana", "tcp://host", "tcp://127.0.0.1:0", "http://127.0.0.1:8786"])
+@pytest.mark.parametrize("address", ["banana", "tcp://host", "tcp://127.0.0.1:0", "banana:http"])
 def test_a_scheduler_that_is_not_an_address_is_refused_at_once(address, tmp_path):
     """'banana' waited the 10 s connect timeout, then Dask's half-made client printed an
     'Exception ignored … TimeoutError' traceback 20 s later."""
@@ -132,3 +132,35 @@ def test_a_listed_file_replaced_by_a_link_is_named_as_a_link(run_dir, tmp_path):
     assert outside.read_text() == "not jointdyn's\n" and (d / "timeseries.csv").is_symlink()
     assert (d / "manifest.json").read_text() == before
     assert json.loads(before)["status"] == "complete"
+
+
+def test_single_file_writers_join_a_run_directory_manifest(run_dir, tmp_path):
+    """bearing-table, stribeck and film-force --out into a run directory wrote there without its
+    lock and outside its manifest (a later --overwrite kept them as foreign files) [T338]."""
+    import hashlib
+    import shutil
+
+    d = tmp_path / "r"
+    shutil.copytree(run_dir, d)
+    states = tmp_path / "states.csv"
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,0,0,0,500,0,0.01,0.04,0.01,5e-5\n"
+    )
+    strib = ["stribeck", "--radius", "0.02", "--length", "0.02", "--clearance", "2e-5", "--viscosity", "0.05"]
+    for argv in (
+        ["bearing-table", "--ld", "1", "--eps", "0.5", "--out", str(d / "bt.csv")],
+        [*strib, "--load", "100", "--speeds", "10,100", "--out", str(d / "st.csv")],
+        ["film-force", str(states), "--out", str(d / "ff.csv")],
+    ):
+        r = runner.invoke(app, argv)
+        assert r.exit_code == 0, r.output
+    m = json.loads((d / "manifest.json").read_text())
+    for name in ("bt.csv", "st.csv", "st.png", "ff.csv"):
+        assert m["files"][name]["sha256"] == hashlib.sha256((d / name).read_bytes()).hexdigest()
+    assert "results.nc" in m["files"] and not list(d.glob(".*"))  # the run's own files kept; no lock
+    r = runner.invoke(
+        app, ["run", "slider-crank", "--joint", "dry", "--revs", "0.05", "--out", str(d), "--overwrite"]
+    )
+    assert r.exit_code == 0, r.output
+    assert not any((d / n).exists() for n in ("bt.csv", "st.csv", "st.png", "ff.csv"))  # jointdyn's: removed

@@ -42,3 +42,42 @@ def test_ctrl_c_while_computing_is_one_line(tmp_path, name):
     assert p.returncode == 130 and "Traceback" not in err and len(lines) == 1, err
     assert lines[0].startswith("interrupted by SIGINT")
     assert not out.exists() and not list(tmp_path.glob(".*tmp*"))
+
+
+def test_ctrl_c_while_a_finite_table_is_built_is_one_line(tmp_path):
+    """``film-force --model finite`` builds its film table on first use (≈ 50 s with Reynolds'
+    condition): before, the recorded Ctrl-C was checked only after the whole build, then the
+    forces were written and the command exited 0; now it is checked per ξ row of the table
+    [T336]. A cache directory without film tables (the compiled kernels linked in) makes the
+    build cold."""
+    from jointdyn.core.compiled import cache_base
+
+    cache = tmp_path / "cache" / "jointdyn"
+    cache.mkdir(parents=True)
+    for p in cache_base().glob("numba-*"):
+        (cache / p.name).symlink_to(p)
+    states = tmp_path / "states.csv"
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,0,0,0,500,0,0.01,0.04,0.01,5e-5\n"
+    )
+    out = tmp_path / "f.csv"
+    argv = ["film-force", str(states), "--model", "finite", "--cavitation", "reynolds", "--out", str(out)]
+    p = subprocess.Popen(
+        [sys.executable, "-c", "import jointdyn_entry as e; e.main()", *argv],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=os.environ | {"PYTHONPATH": str(SRC), "XDG_CACHE_HOME": str(tmp_path / "cache")},
+    )
+    time.sleep(8.0)
+    assert p.poll() is None, p.communicate()
+    p.send_signal(signal.SIGINT)
+    t0 = time.monotonic()
+    _, err = p.communicate(timeout=120)
+    waited = time.monotonic() - t0
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert p.returncode == 130 and "Traceback" not in err and len(lines) == 1, err
+    assert lines[0].startswith("interrupted by SIGINT") and waited < 15.0, (waited, err)
+    assert not out.exists() and not list(tmp_path.glob(".*tmp*"))
+    assert not list((cache / "finite_tables").glob("*.npy"))  # no partial table cached

@@ -147,10 +147,11 @@ def bearing_table_cmd(
     for i in range(len(tab["eps"])):
         w.writerow([f"{tab[c][i]:.6g}" for c in tab])
     if out:
-        from jointdyn.core.atomic import write_text
+        from jointdyn.io.derived import output_file
 
-        try:  # a character device (/dev/null, /dev/stdout) is written into, never replaced
-            write_text(out, buf.getvalue(), devices=True)
+        try:  # into a run directory: under its lock, in its manifest; a device is written into [T338]
+            with output_file(out, "bearing-table") as tmp:
+                tmp.write_text(buf.getvalue(), encoding="utf-8")
         except (ValueError, OSError) as err:
             console.print(f"[red]error:[/red] {escape(str(err))}", soft_wrap=True)
             raise typer.Exit(2) from None

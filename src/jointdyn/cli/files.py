@@ -247,13 +247,18 @@ def film_force_cmd(
             if cavitation == "jfo":  # the steady line-fed film, state by state [T343]
                 from jointdyn.film.jfo_states import SteadyJFO
 
-                film_force_table(states, SteadyJFO(), out)
+                model = SteadyJFO()
             else:
                 from jointdyn.film.models import Finite
 
-                film_force_table(states, Finite(cavitation=cavitation), out)
-        else:
-            film_force_table(states, model, out)
+                model = Finite(cavitation=cavitation)
+        if out is None:
+            film_force_table(states, model, None)
+            return
+        from jointdyn.io.derived import output_file
+
+        with output_file(out, "film-force") as tmp:  # a run directory's lock and manifest [T338]
+            film_force_table(states, model, tmp)
 
 
 def _doc(obj) -> str:

@@ -106,9 +106,10 @@ def stribeck_cmd(
         w.writerow(STRIBECK_COLUMNS)
         for i in range(len(tab["speed_rpm"])):
             w.writerow([f"{tab[c][i]:.6g}" for c in STRIBECK_COLUMNS])
-        from jointdyn.core.atomic import replacing, write_text
+        from jointdyn.io.derived import output_file
 
-        write_text(out, buf.getvalue())
+        with output_file(out, "stribeck") as tmp:  # a run directory's lock and manifest [T338]
+            tmp.write_text(buf.getvalue(), encoding="utf-8")
         import matplotlib
 
         matplotlib.use("Agg")
@@ -116,7 +117,7 @@ def stribeck_cmd(
 
         fig = stribeck_figure(tab, f"W = {load:g} N, R = {radius:g} m, L = {length:g} m, c = {clearance:g} m")
         png = out.with_suffix(".png")
-        with replacing(png) as tmp:  # atomic, never replacing a link or a special file
+        with output_file(png, "stribeck") as tmp:  # atomic, never replacing a link or a special file
             fig.savefig(tmp, dpi=120, format="png")
     k = min(range(len(tab["speed_rpm"])), key=lambda i: tab["friction_coefficient"][i])
     console.print(

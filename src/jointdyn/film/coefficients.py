@@ -14,6 +14,7 @@ import numbers
 
 import numpy as np
 
+from jointdyn.core import interrupts
 from jointdyn.core.layout import params_of
 from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_jac, film_model
 
@@ -124,7 +125,10 @@ def stability_threshold(k, c) -> dict:
 
 def equilibrium_locus(model: str, ld: float, eps_values) -> dict:
     """(ε, attitude [rad], S [-]) over a sequence of ε ∈ (0, 1) [T106]: the locus as arrays."""
-    rows = [equilibrium(model, ld, float(e)) for e in eps_values]
+    rows = []
+    for e in eps_values:
+        interrupts.check()  # [T336]
+        rows.append(equilibrium(model, ld, float(e)))
     return {
         "eps": np.array([float(e) for e in eps_values]),
         "attitude": np.array([r["attitude"] for r in rows]),

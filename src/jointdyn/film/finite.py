@@ -20,7 +20,7 @@ from pathlib import Path
 import numpy as np
 from numba import njit
 
-from jointdyn.core import atomic
+from jointdyn.core import atomic, interrupts
 
 XI_MAX = 0.95  # table range; beyond it the force is extrapolated with the (1−ξ²)^{-3/2} scaling
 
@@ -188,6 +188,7 @@ def build_table(
     tab[1] = (XI_MAX, 4.0)
     states = None
     for a, xi in enumerate(xis):
+        interrupts.check()  # a CLI's Ctrl-C waited for the whole build (≈ 50 s with reynolds) [T336]
         if cavitation == "gumbel":
             th, zeta, PA, PB = solve_unit_pressures(xi, L_over_D, n_theta, n_zeta)
             fr, ft = unit_forces(th, zeta, PA, PB, psi)

@@ -23,6 +23,7 @@ import numpy as np
 from scipy.sparse import csc_matrix, csr_matrix, diags
 from scipy.sparse.linalg import splu
 
+from jointdyn.core import interrupts
 from jointdyn.film.fv import assemble, check_ld
 from jointdyn.film.grooved import Grooves, groove_labels
 from jointdyn.film.jfo import transport
@@ -257,6 +258,7 @@ def orbit(
     v = np.zeros(2)
     warm = None
     for k in range(1, n):
+        interrupts.check()  # a signal recorded by a caller's catching() stops here [T336]
         pending = [(times[k - 1], times[k])]
         net = 0.0
         while pending:

@@ -29,18 +29,19 @@ ASK_TIMEOUT = 5.0  # [s] one question to a running scheduler
 
 
 def check_address(address: str) -> None:
-    """``address`` must be ``tcp://HOST:PORT`` (or ``tls://``), PORT in 1…65535: refused before
-    any connection attempt (Dask's own error came after the connect timeout, followed by an
-    ignored traceback of its half-made client)."""
+    """``address``: ``tcp://`` (the default scheme) or ``tls://`` must name ``HOST:PORT`` with PORT in
+    1…65535 (other schemes, e.g. ``inproc://``, are Dask's to check): refused before any connection
+    attempt (Dask's own error came after the connect timeout, followed by an ignored traceback
+    of its half-made client) [T335]."""
     from urllib.parse import urlsplit
 
     try:
-        u = urlsplit(address)
+        u = urlsplit(address if "://" in address else "tcp://" + address)  # Dask's default: tcp
         port = u.port
     except ValueError:
-        port = None
-        u = None
-    if u is None or u.scheme not in ("tcp", "tls") or not u.hostname or port is None or not 0 < port < 65536:
+        u, port = None, None
+    hostport = u is not None and bool(u.hostname) and port is not None and 0 < port < 65536
+    if u is None or (u.scheme in ("tcp", "tls") and not hostport):
         raise ValueError(
             f"--scheduler {address!r}: expected tcp://HOST:PORT (PORT 1…65535), e.g. tcp://127.0.0.1:8786"
         )
