@@ -1,5 +1,6 @@
 """Derived outputs: files written into a directory another command made (``poincare``,
-``spectrum``, ``plot``, ``plot-sweep``, ``animate``, ``bifurcation.png``) join its manifest under
+``spectrum``, ``plot``, ``plot-sweep``, ``animate``, ``bifurcation.png``, and the single files of
+``bearing-table``, ``stribeck``, ``film-force``) join its manifest under
 its lock (:mod:`jointdyn.io.rundir`); a single file elsewhere is written on its own by
 :func:`jointdyn.core.atomic.replacing`."""
 

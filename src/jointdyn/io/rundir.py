@@ -16,8 +16,8 @@ Rules (``docs/user-guide/cli.md``):
   killed run's files are known to the next ``--overwrite``). It is removed when the writer ends;
   a lock left by a dead process is taken over.
 * Derived outputs (:func:`jointdyn.io.derived.derived`: ``poincare``, ``spectrum``, ``plot``,
-  ``plot-sweep``, ``animate`` into a directory with a manifest) are added to that manifest under
-  the lock.
+  ``plot-sweep``, ``animate``, ``bearing-table``, ``stribeck``, ``film-force`` into a directory
+  with a manifest) are added to that manifest under the lock.
 """
 
 from __future__ import annotations
