@@ -12,6 +12,7 @@ import sys
 import time
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 SRC = Path(__file__).parents[1] / "src"
@@ -80,4 +81,9 @@ def test_ctrl_c_while_a_finite_table_is_built_is_one_line(tmp_path):
     assert p.returncode == 130 and "Traceback" not in err and len(lines) == 1, err
     assert lines[0].startswith("interrupted by SIGINT") and waited < 15.0, (waited, err)
     assert not out.exists() and not list(tmp_path.glob(".*tmp*"))
-    assert not list((cache / "finite_tables").glob("*.npy"))  # no partial table cached
+    # no partial table cached: on a quiet machine the build may finish within the 8 s, and a
+    # finished table is a valid cache entry (written atomically); whatever is there is whole
+    for f in (cache / "finite_tables").glob("*.npy"):
+        tab = np.load(f)
+        n_xi, n_psi = (int(v) for v in tab[0])
+        assert tab.shape == (2 + 4 * n_xi * n_psi, 2) and np.all(np.isfinite(tab)), f
