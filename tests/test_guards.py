@@ -223,6 +223,49 @@ def test_ctrl_c_while_the_cli_loads_is_one_line():
     assert err.strip() == "interrupted by SIGINT while starting"
 
 
+@pytest.mark.parametrize("sig, code", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_a_signal_between_the_import_and_the_command_guard_is_one_line(sig, code):
+    """[T355] After the CLI has loaded and before a command installs its guard (its own imports,
+    ≈ 0.5 s): SIGINT ended with typer's silent exit 130, SIGTERM with the default kill (−15, no
+    line). The window is held open here by a command that only waits."""
+    env = os.environ | {"PYTHONPATH": str(SRC)}
+    code_ = (
+        "import sys, time, jointdyn_entry as e, jointdyn.cli as c\n"
+        "def wait():\n"
+        "    print('ready', flush=True)\n"
+        "    time.sleep(60)\n"
+        "c.app = wait\n"
+        "e.main()\n"
+    )
+    p = subprocess.Popen(
+        [sys.executable, "-c", code_], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env
+    )
+    assert p.stdout.readline().strip() == "ready"
+    p.send_signal(sig)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == code, err
+    assert err.strip() == f"interrupted by {signal.Signals(sig).name}"
+
+
+def test_sigterm_while_the_cli_loads_is_one_line():
+    """SIGTERM while jointdyn and numba import: was the default kill (−15, no line) [T355]."""
+    env = os.environ | {"PYTHONPATH": str(SRC)}
+    p = subprocess.Popen(
+        [sys.executable, "-c", "import jointdyn_entry as e; e.main()", "--version"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
+    time.sleep(0.3)
+    p.send_signal(signal.SIGTERM)
+    _, err = p.communicate(timeout=60)
+    if p.returncode == 0:
+        pytest.skip("the imports finished within 0.3 s: nothing to interrupt")
+    assert p.returncode == 143 and "Traceback" not in err, err
+    assert err.strip() == "interrupted by SIGTERM while starting"
+
+
 SWEEP = '[base]\nmodel = "slider-crank"\njoint = "perfect"\nrevs = 0.1\n[grid]\n'
 
 
