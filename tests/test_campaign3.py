@@ -164,3 +164,32 @@ def test_single_file_writers_join_a_run_directory_manifest(run_dir, tmp_path):
     )
     assert r.exit_code == 0, r.output
     assert not any((d / n).exists() for n in ("bt.csv", "st.csv", "st.png", "ff.csv"))  # jointdyn's: removed
+
+
+def test_a_derived_output_never_replaces_the_directory_own_files(run_dir, tmp_path):
+    """[T356] ``film-force --out RUN/results.nc`` replaced the run's results with a CSV and exited
+    0 (the derived writer could replace any file its manifest listed). A derived file may replace
+    a derived file (re-plotting), never the directory's own outputs."""
+    import hashlib
+    import shutil
+
+    d = tmp_path / "r"
+    shutil.copytree(run_dir, d)
+    states = tmp_path / "states.csv"
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,0,0,0,500,0,0.01,0.04,0.01,5e-5\n"
+    )
+    before = {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in d.iterdir()}
+    manifest = json.loads((d / "manifest.json").read_text())
+    for name in manifest["files"]:
+        r = runner.invoke(app, ["film-force", str(states), "--out", str(d / name)])
+        assert r.exit_code == 2, r.output
+        assert f"{name} is an output of this run" in r.output and "choose another name" in r.output
+    assert {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in d.iterdir()} == before
+    for _ in range(2):  # a derived file is replaced by the next derived one
+        r = runner.invoke(app, ["film-force", str(states), "--out", str(d / "ff.csv")])
+        assert r.exit_code == 0, r.output
+    m = json.loads((d / "manifest.json").read_text())
+    assert m["files"]["ff.csv"]["derived"] == "film-force"
+    assert {n: e for n, e in m["files"].items() if n != "ff.csv"} == manifest["files"]

@@ -184,6 +184,8 @@ class OutputDir:
         self.kept: list[str] = []
         self._fd: int | None = None
         self._owned: set[str] = set()  # names of earlier runs this one may replace
+        self._core: set[str] = set()  # the extended directory's own outputs: never replaced [T356]
+        self._derived: dict[str, str] = {}  # carried names a derived command wrote, and its kind
         self._journal: list[str] = []  # names a killed earlier run recorded, still in the lock file
         self._base: dict | None = None  # the manifest extended by derived outputs
         self._carried: list[str] = []  # files of the run a resumed one continues
@@ -210,7 +212,9 @@ class OutputDir:
         """Lock a directory that has a manifest to add files to it (derived outputs)."""
         self._lock()
         self._base = read_manifest(self.path) or {"kind": self.kind, "status": "complete", "files": {}}
-        self._owned = set(self._base.get("files", {}))
+        listed = self._base.get("files", {})
+        self._owned = {n for n, e in listed.items() if isinstance(e, dict) and e.get("derived")}
+        self._core = set(listed) - self._owned
 
     def check(self, overwrite: bool = False, resume: bool = False) -> None:
         """Refuse, without touching anything, a non-empty directory when neither flag is given."""
@@ -297,6 +301,11 @@ class OutputDir:
         if resume and self.kind in ("sweep", "bifurcation"):
             self._owned = listed | {MANIFEST}
             self._carried = sorted(listed)  # still listed at the end if still there
+            self._derived = {  # carried derived outputs stay marked as such [T356]
+                n: e["derived"]
+                for n, e in (old or {}).get("files", {}).items()
+                if isinstance(e, dict) and e.get("derived")
+            }
             return  # the sweep checks the spec itself (ownership) and keeps finished cases
         if not overwrite:
             self.check(False, False)
@@ -354,6 +363,11 @@ class OutputDir:
         final = _inside(self.path, name)
         if final is None:
             raise OutputError(f"{self.option} {self.path}: {name!r} is not a plain file name")
+        if name in self._core and name not in self.files:
+            raise OutputError(
+                f"{self.option} {final}: {name} is an output of this {self._base_kind()} (its manifest "
+                "lists it), not a derived file, and is never replaced by one; choose another name"
+            )
         if os.path.lexists(final) and name not in self.files and name not in self._owned:
             raise OutputError(
                 f"{self.option} {self.path}: {name} is there and jointdyn did not write it "
@@ -380,6 +394,11 @@ class OutputDir:
         self.journal(name)
         p = self.path / name
         self.files[name] = {"bytes": p.stat().st_size, "sha256": atomic.sha256(p)}
+        if self._base is not None:  # written by a derived command: a later one may replace it
+            self.files[name]["derived"] = self.kind
+
+    def _base_kind(self) -> str:
+        return str((self._base or {}).get("kind", "run"))
 
     def finish(self, status: str = "complete", reason: str = "", **extra) -> None:
         """Write ``manifest.json`` (last) and release the lock."""
@@ -387,6 +406,8 @@ class OutputDir:
             p = _inside(self.path, name)
             if name not in self.files and p is not None and p.is_file() and not p.is_symlink():
                 self.record(name)
+                if name in self._derived:
+                    self.files[name]["derived"] = self._derived[name]
         manifest = {
             "kind": self.kind,
             "status": status,
