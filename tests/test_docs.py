@@ -66,7 +66,9 @@ def test_site_builds_strict_and_tutorials_show_their_figures(tmp_path):
                 f"{page.relative_to(site)}: {src} missing"
             )
             shown.add(png.relative_to(site.resolve()).as_posix())
-    assert "figures/validation_raimondi_boyd.png" in shown  # drawn by docs/hooks/validation_figure.py
+    assert (
+        "figures/validation_raimondi_boyd.png" in shown
+    )  # committed (issue 29), checked by test_docs_current
     for script in EXAMPLES:
         page = site / "tutorials" / script.stem / "index.html"
         assert page.exists(), f"no tutorial page for {script.name}"
