@@ -239,3 +239,49 @@ def test_progress_clocks_are_per_task():
         tasks = {t.description: t for t in prog._prog.tasks}
     # the second case's clock never ran during the first one (sleep granularity ≪ 0.25 s)
     assert tasks["first"].elapsed >= 0.3 and tasks["second"].elapsed < 0.25
+
+
+def test_film_force_to_stdout_writes_nothing_before_a_bad_first_block(tmp_path):
+    """issue 29: the CSV header went to stdout before row 2's error; now the first block is
+    computed before anything is written, so a failing table leaves stdout empty."""
+    states = tmp_path / "s.csv"
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,20,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n0.5,nan,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n"
+    )
+    r = runner.invoke(app, ["film-force", str(states)])
+    assert r.exit_code == 2 and "row 2" in r.stderr and "xi_dot" in r.stderr
+    assert r.stdout == ""
+
+
+def test_film_force_to_stdout_marks_a_table_cut_by_a_later_block(tmp_path, monkeypatch):
+    """Streaming blocks of BLOCK rows: an error in a later block cannot unwrite the rows already
+    printed, so the output ends with a '#' line saying the table is incomplete."""
+    from jointdyn.film import table
+
+    monkeypatch.setattr(table, "BLOCK", 1)
+    states = tmp_path / "s.csv"
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,20,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n0.5,nan,0.3,100,523.6,0,0.4,0.04,0.01,0.0005\n"
+    )
+    r = runner.invoke(app, ["film-force", str(states)])
+    assert r.exit_code == 2 and "row 2" in r.stderr
+    lines = r.stdout.splitlines()
+    assert lines[0].startswith("xi,") and lines[1].startswith("0.5,20,") and len(lines) == 3
+    assert lines[2] == "# INCOMPLETE: film-force stopped after 1 rows (the error is on stderr)"
+
+
+def test_bearing_table_says_the_gumbel_film_end_is_by_construction():
+    """issue 29: `--model alshaer2005` printed theta_end_deg = 0 as if computed; a Gümbel film is
+    cut at the minimum film (θ = π), so the 0 is stated as such; Reynolds' rupture of the long
+    bearing is computed (θ_e − π > 0, [T78])."""
+    op = ["--ld", "1", "--eps", "0.5", "--load", "4000", "--speed", "25", "--radius", "0.025"]
+    op += ["--clearance", "30e-6", "--viscosity", "0.02"]
+    r = runner.invoke(app, ["bearing-table", "--model", "alshaer2005", *op])
+    assert r.exit_code == 0, r.output
+    line = next(ln for ln in r.stderr.splitlines() if "theta_end_deg" in ln)
+    assert "= 0 [deg] (by construction" in line
+    r = runner.invoke(app, ["bearing-table", "--model", "long", *op])
+    line = next(ln for ln in r.stderr.splitlines() if "theta_end_deg" in ln)
+    assert "construction" not in line and float(line.split("=")[1].split("[")[0]) > 10.0

@@ -66,7 +66,9 @@ def test_site_builds_strict_and_tutorials_show_their_figures(tmp_path):
                 f"{page.relative_to(site)}: {src} missing"
             )
             shown.add(png.relative_to(site.resolve()).as_posix())
-    assert "figures/validation_raimondi_boyd.png" in shown  # drawn by docs/hooks/validation_figure.py
+    assert (
+        "figures/validation_raimondi_boyd.png" in shown
+    )  # committed (issue 29), checked by test_docs_current
     for script in EXAMPLES:
         page = site / "tutorials" / script.stem / "index.html"
         assert page.exists(), f"no tutorial page for {script.name}"
@@ -152,3 +154,64 @@ def test_getting_started_commands_in_a_fresh_venv(tmp_path):
         )
         assert proc.returncode == 0, f"python block {i}:\n{code}\n{proc.stderr[-3000:]}"
     assert (clone / "run.nc").exists()  # written by the Python block
+
+
+def _pep668_system_python() -> str | None:
+    """A python3 (≥ 3.11, not a virtual environment) whose standard library holds the PEP 668
+    ``EXTERNALLY-MANAGED`` marker, i.e. a system Python that refuses global installs (Debian 12's
+    /usr/bin/python3 is one); None if this machine has none."""
+    probe = (
+        "import sys, sysconfig, os; print(sys.version_info >= (3, 11) and sys.prefix == sys.base_prefix"
+        " and os.path.isfile(os.path.join(sysconfig.get_path('stdlib'), 'EXTERNALLY-MANAGED')))"
+    )
+    for exe in ("/usr/bin/python3", shutil.which("python3"), "/usr/local/bin/python3"):
+        if exe and os.path.isfile(exe):
+            r = subprocess.run([exe, "-I", "-c", probe], capture_output=True, text=True)
+            if r.stdout.strip() == "True":
+                return exe
+    return None
+
+
+@pytest.mark.slow
+def test_readme_commands_verbatim_where_global_installs_are_refused(tmp_path):
+    """The README's first two ``bash`` blocks, verbatim, in one shell (the activation carries
+    over), in a copy of the checkout, with ``python3`` resolving to a real PEP 668 system Python
+    (not simulated: the marker is the distribution's own). First a global ``pip install -e .`` with
+    that interpreter is shown to be refused, then the README's lines make the venv, install and run
+    the main job. The dependencies come from the package index pip is configured with; the numba
+    cache starts empty."""
+    system = _pep668_system_python()
+    if system is None:
+        pytest.skip("no PEP 668 system python3 here (Debian ≥ 12 and Ubuntu ≥ 23.04 ship one)")
+    blocks = _blocks((ROOT / "README.md").read_text(encoding="utf-8"), "bash")
+    venv_line, main_job = blocks[0].strip(), blocks[1].strip()
+    assert venv_line == "python3 -m venv .venv && . .venv/bin/activate"
+    assert main_job.startswith("python -m pip install -e . && jointdyn reproduce alshaer2005 --out ")
+
+    clone = tmp_path / "jointdyn"
+    ignore = shutil.ignore_patterns(".git", "out", "site", "__pycache__", "*.egg-info", ".venv", "*.nc")
+    shutil.copytree(ROOT, clone, ignore=ignore)
+    sysbin = tmp_path / "system-bin"  # python3 on PATH is the system one, nothing else of ours
+    sysbin.mkdir()
+    (sysbin / "python3").symlink_to(system)
+    drop = ("PYTHONPATH", "PYTHONHOME", "VIRTUAL_ENV", "PYTHONNOUSERSITE")
+    env = {k: v for k, v in os.environ.items() if k not in drop}
+    env.update(PATH=f"{sysbin}{os.pathsep}/usr/bin{os.pathsep}/bin", MPLBACKEND="Agg", HOME=str(tmp_path))
+    env["NUMBA_CACHE_DIR"] = str(tmp_path / "numba-cache")
+
+    refused = subprocess.run(
+        ["bash", "-c", "python3 -m pip install -e ."], cwd=clone, env=env, capture_output=True, text=True
+    )
+    assert refused.returncode != 0 and "externally-managed-environment" in refused.stderr, refused.stderr[
+        -2000:
+    ]
+
+    script = f"set -e\n{venv_line}\n{main_job}\ncommand -v jointdyn\n"
+    proc = subprocess.run(
+        ["bash", "-c", script], cwd=clone, env=env, capture_output=True, text=True, timeout=3600
+    )
+    assert proc.returncode == 0, f"{proc.stdout[-3000:]}\n{proc.stderr[-3000:]}"
+    assert proc.stdout.strip().splitlines()[-1] == str(clone / ".venv" / "bin" / "jointdyn")
+    out = clone / main_job.split("--out ")[1].split()[0]
+    for f in ("report.html", "summary.csv", "dry.csv", "ensemble_dry.json"):
+        assert (out / f).is_file(), f

@@ -4,6 +4,7 @@ digit, as for the README, ``jointdyn.cli.docs_gen.compare``). All 14 entries tak
 
 from __future__ import annotations
 
+import ast
 import importlib.util
 import re
 from pathlib import Path
@@ -84,3 +85,35 @@ def test_poincare_spreads_are_current(joint):
         assert not docs_gen.compare(
             shown, f"{now:.{digits}g}" if "e" not in shown else f"{now:.{digits - 1}e}", name
         )
+
+
+def _page_ensemble_args() -> tuple[str, str]:
+    text = PAGE.read_text(encoding="utf-8")
+    cmd = re.search(r"^jointdyn ensemble --joint dry (.*) --out", text, re.M).group(1)
+    py = re.search(r"^r = ensemble\(\"slider-crank\", \{\"joint\": \"dry\"\}, (.*)\)$", text, re.M).group(1)
+    return cmd, py
+
+
+def test_the_ensemble_block_is_generated_with_the_pages_own_arguments():
+    """The page's ensemble table is the generated block ``chaos-ensemble`` of docs/_gen_chaos.py,
+    and the command and the Python call shown with it ask for the generator's ensemble."""
+    assert "chaos-ensemble" in docs_gen.blocks(PAGE.read_text(encoding="utf-8"))
+    kw = _gen().ENSEMBLE_KW
+    cmd, py = _page_ensemble_args()
+    opts = dict(zip(cmd.split()[::2], cmd.split()[1::2]))
+    assert [float(r) for r in opts.pop("--rtols").split(",")] == list(kw["rtols"])
+    assert {k.lstrip("-").replace("-", "_"): int(v) for k, v in opts.items()} == {
+        k: v for k, v in kw.items() if k != "rtols"
+    }
+    call = ast.parse(f"f({py})", mode="eval").body
+    assert {k.arg: ast.literal_eval(k.value) for k in call.keywords} == kw  # the page's Python call
+
+
+@pytest.mark.slow
+def test_the_ensemble_block_is_current():
+    """Recompute the page's dry ensemble (6 runs × 110 revolutions, ≈ 6 min CPU) and compare each
+    number of the block with the page (one unit in the last printed digit): a stale number fails
+    (issue 29: the table had no check)."""
+    shown = docs_gen.blocks(PAGE.read_text(encoding="utf-8"))["chaos-ensemble"]
+    problems = docs_gen.compare(shown, _gen().ensemble_block(), "chaos-ensemble")
+    assert not problems, "run `python docs/_gen_chaos.py --only ensemble`:\n" + "\n".join(problems)

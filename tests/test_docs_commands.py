@@ -256,3 +256,63 @@ def python_blocks() -> list[tuple[str, str]]:
         text = page.read_text(encoding="utf-8")
         out += [(rel, m.group(1)) for m in re.finditer(r"^```python\n(.*?)^```", text, re.S | re.M)]
     return out
+
+
+def _free_port() -> int:
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+@pytest.mark.slow
+def test_the_dask_block_of_the_sweep_guide_runs(tmp_path):
+    """docs/user-guide/sweeps.md's cluster block on this machine: its scheduler and worker lines
+    are started and its sweep line is run against them. Substituted: the placeholder SCHEDULER
+    → 127.0.0.1, the scheduler's ``--host 0.0.0.0`` → 127.0.0.1 (nothing listens beyond this
+    machine) and the port 8786 → a free one; everything else is verbatim. The sweep's 25 cases
+    must all finish on the Dask workers."""
+    import time
+
+    import xarray as xr
+
+    pytest.importorskip("distributed")
+    guide = (ROOT / "docs" / "user-guide" / "sweeps.md").read_text(encoding="utf-8")
+    block = next(b for b in re.findall(r"^```bash\n(.*?)^```", guide, re.S | re.M) if "dask scheduler" in b)
+    lines = [ln.strip() for ln in block.splitlines() if ln.strip() and not ln.startswith("#")]
+    sched, worker, sweep = (
+        next(ln for ln in lines if ln.startswith(w)) for w in ("dask scheduler", "dask worker", "jointdyn")
+    )
+    port = str(_free_port())
+
+    def local(cmd: str) -> str:
+        return cmd.replace("SCHEDULER", "127.0.0.1").replace("0.0.0.0", "127.0.0.1").replace("8786", port)
+
+    (tmp_path / "examples").symlink_to(ROOT / "examples")
+    bin_dir = str(Path(sys.executable).parent)
+    env = {**os.environ, "MPLBACKEND": "Agg", "PATH": bin_dir + os.pathsep + os.environ.get("PATH", "")}
+    procs = []
+    try:
+        for cmd in (sched, worker):
+            procs.append(
+                subprocess.Popen(
+                    shlex.split(local(cmd)),
+                    cwd=tmp_path,
+                    env=env,
+                    stdout=subprocess.DEVNULL,
+                    stderr=subprocess.DEVNULL,
+                )
+            )
+            time.sleep(5)
+        r = subprocess.run(
+            local(sweep), shell=True, cwd=tmp_path, env=env, capture_output=True, text=True, timeout=2400
+        )
+        assert r.returncode == 0, r.stderr[-3000:]
+    finally:
+        for p in reversed(procs):
+            p.terminate()
+            p.wait(timeout=30)
+    out = tmp_path / local(sweep).split("--out ")[1].split()[0]
+    ds = xr.open_dataset(out / "sweep.nc")
+    assert int((ds["error"].values == "").sum()) == ds["error"].size == 25

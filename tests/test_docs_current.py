@@ -62,3 +62,23 @@ def test_readme_numbers_are_current():
 def test_readme_figures_exist(name):
     data = (ROOT / "docs" / "figures" / name).read_bytes()
     assert data.startswith(b"\x89PNG") and len(data) > 10_000  # a plotted figure, not an empty canvas
+
+
+def test_the_committed_validation_figure_plots_what_the_code_computes():
+    """docs/validation.md's figure is committed (its link works on GitHub, issue 29); it carries
+    the digest of the arrays it plots (5 significant digits). Recompute those arrays — the
+    solver's design tables against the published points — and compare: a stale figure fails."""
+    from PIL import Image
+
+    from jointdyn.bearing.validation import DIGEST_KEY, curves_digest, validation_curves
+
+    png = ROOT / "docs" / "figures" / docs_gen.VALIDATION_FIGURE
+    with Image.open(png) as im:
+        shown = im.text.get(DIGEST_KEY)
+    data = ROOT / "tests" / "data"
+    curves = validation_curves(data / "raimondi_boyd_1958.csv", data / "butenschoen_1976.csv")
+    assert len(curves) >= 4 and all(len(c["S"]) == 48 for c in curves)
+    assert shown == curves_digest(curves), "run `python -m jointdyn.cli.docs_gen --validation-figure`"
+    changed = [dict(c) for c in curves]
+    changed[0]["S"] = changed[0]["S"] * 1.001  # a 0.1 % change of one line is seen
+    assert curves_digest(changed) != shown

@@ -122,40 +122,85 @@ def butenschoen_table(path: str | Path) -> str:
     return "\n".join(lines)
 
 
-def plot_validation(published_path: str | Path, out_png: str | Path, butenschoen_path=None) -> None:
+def validation_curves(published_path: str | Path, butenschoen_path=None) -> list[dict]:
+    """What :func:`plot_validation` draws, per published L/D: the computed S(ε) and attitude(ε)
+    lines (``finite`` Reynolds, long Reynolds for L/D = ∞) over ``eps`` (48 points), the published
+    points and the published S relative to the computed one at the published ε [%]; Butenschön's
+    points as ``but_*`` where he has the L/D [T84]."""
+    pub = load_published(published_path)
+    but = load_butenschoen(butenschoen_path) if butenschoen_path is not None else {}
+    eps = np.linspace(0.05, 0.99, 48)
+    out = []
+    for ld in sorted(pub, key=lambda x: -x if math.isfinite(x) else -1e9):
+        model, ld_arg = ("long", 1.0) if math.isinf(ld) else ("finite", ld)
+        tab = bearing_table(model, "reynolds", ld_arg, eps, coefficients=False)
+        S_here = bearing_table(model, "reynolds", ld_arg, pub[ld]["eps"], coefficients=False)["sommerfeld"]
+        c = {
+            "ld": ld,
+            "eps": tab["eps"],
+            "S": tab["sommerfeld"],
+            "attitude": tab["attitude_deg"],
+            "pub_eps": pub[ld]["eps"],
+            "pub_S": pub[ld]["sommerfeld"],
+            "pub_attitude": pub[ld]["attitude_deg"],
+            "pub_dev": 100 * (pub[ld]["sommerfeld"] / S_here - 1),
+        }
+        if ld in but:
+            b = but[ld]
+            S_b = 1.0 / (2.0 * math.pi * b["So"])
+            S_here = bearing_table("finite", "reynolds", ld, b["eps"], coefficients=False)["sommerfeld"]
+            c |= {
+                "but_eps": b["eps"],
+                "but_S": S_b,
+                "but_beta": b["beta_deg"],
+                "but_dev": 100 * (S_b / S_here - 1),
+            }
+        out.append(c)
+    return out
+
+
+def curves_digest(curves: list[dict]) -> str:
+    """SHA-256 of the plotted arrays rounded to 5 significant digits (far below what a figure
+    resolves, above the round-off of another CPU): the committed figure carries it."""
+    import hashlib
+
+    h = hashlib.sha256()
+    for c in curves:
+        for k in sorted(c):
+            values = np.atleast_1d(np.asarray(c[k], dtype=float))
+            h.update((k + ":" + ";".join(f"{v:.5g}" for v in values) + "\n").encode())
+    return h.hexdigest()
+
+
+#: PNG text key of the plotted-data digest
+DIGEST_KEY = "jointdyn-plotted-data-sha256"
+
+
+def plot_validation(published_path: str | Path, out_png: str | Path, butenschoen_path=None) -> str:
     """Figure S(ε) and attitude(ε): computed curves (``finite`` Reynolds, long Reynolds) over
     the published Raimondi–Boyd points (o), one colour per L/D, and Butenschön's (+) for the same
     L/D when ``butenschoen_path`` is given [T84]; a third panel shows each published S relative
-    to the computed one (the ±3 % band of issue 13 shaded); saved as PNG."""
+    to the computed one (the ±3 % band of issue 13 shaded); saved as PNG with the digest of the
+    plotted arrays (:func:`curves_digest`) as a text chunk, which is returned."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    pub = load_published(published_path)
-    but = load_butenschoen(butenschoen_path) if butenschoen_path is not None else {}
-    eps = np.linspace(0.05, 0.99, 48)
+    curves = validation_curves(published_path, butenschoen_path)
     fig, (a1, a2, a3) = plt.subplots(1, 3, figsize=(15, 4.4))
-    for k, ld in enumerate(sorted(pub, key=lambda x: -x if math.isfinite(x) else -1e9)):
+    for k, c in enumerate(curves):
         col = f"C{k}"
-        lab = "L/D = ∞" if math.isinf(ld) else f"L/D = {ld:g}"
-        model, ld_arg = ("long", 1.0) if math.isinf(ld) else ("finite", ld)
-        tab = bearing_table(model, "reynolds", ld_arg, eps, coefficients=False)
-        a1.semilogy(tab["eps"], tab["sommerfeld"], color=col, label=lab + " (computed)")
-        a1.semilogy(pub[ld]["eps"], pub[ld]["sommerfeld"], "o", mfc="none", color=col)
-        a2.plot(tab["eps"], tab["attitude_deg"], color=col, label=lab)
-        a2.plot(pub[ld]["eps"], pub[ld]["attitude_deg"], "o", mfc="none", color=col)
-        S_here = bearing_table(model, "reynolds", ld_arg, pub[ld]["eps"], coefficients=False)["sommerfeld"]
-        a3.plot(
-            pub[ld]["eps"], 100 * (pub[ld]["sommerfeld"] / S_here - 1), "o-", mfc="none", color=col, lw=0.8
-        )
-        if ld in but:
-            b = but[ld]
-            S_b = 1.0 / (2.0 * math.pi * b["So"])
-            a1.semilogy(b["eps"], S_b, "+", ms=7, color=col)
-            a2.plot(b["eps"], b["beta_deg"], "+", ms=7, color=col)
-            S_here = bearing_table("finite", "reynolds", ld, b["eps"], coefficients=False)["sommerfeld"]
-            a3.plot(b["eps"], 100 * (S_b / S_here - 1), "+--", ms=7, color=col, lw=0.8)
+        lab = "L/D = ∞" if math.isinf(c["ld"]) else f"L/D = {c['ld']:g}"
+        a1.semilogy(c["eps"], c["S"], color=col, label=lab + " (computed)")
+        a1.semilogy(c["pub_eps"], c["pub_S"], "o", mfc="none", color=col)
+        a2.plot(c["eps"], c["attitude"], color=col, label=lab)
+        a2.plot(c["pub_eps"], c["pub_attitude"], "o", mfc="none", color=col)
+        a3.plot(c["pub_eps"], c["pub_dev"], "o-", mfc="none", color=col, lw=0.8)
+        if "but_eps" in c:
+            a1.semilogy(c["but_eps"], c["but_S"], "+", ms=7, color=col)
+            a2.plot(c["but_eps"], c["but_beta"], "+", ms=7, color=col)
+            a3.plot(c["but_eps"], c["but_dev"], "+--", ms=7, color=col, lw=0.8)
     a1.set(
         xlabel="eccentricity ratio ε [-]",
         ylabel="Sommerfeld number S [-]",
@@ -175,6 +220,8 @@ def plot_validation(published_path: str | Path, out_png: str | Path, butenschoen
     fig.tight_layout()
     from jointdyn.core.atomic import replacing
 
+    digest = curves_digest(curves)
     with replacing(out_png) as tmp:
-        fig.savefig(tmp, dpi=110, format="png")
+        fig.savefig(tmp, dpi=110, format="png", metadata={DIGEST_KEY: digest})
     plt.close(fig)
+    return digest

@@ -175,10 +175,23 @@ def bearing_table_cmd(
             "delta_t": "K",
             "viscosity": "Pa·s",
         }
+        from jointdyn.bearing.design import _check_model
+
+        # a Gümbel film is cut where the gap is smallest (θ = π from the maximum film, [T21]): its
+        # film end is 0 by construction, not a computed rupture — say so instead of a bare 0
+        gumbel = _check_model(model, cavitation)[1] == "gumbel"
         console.print("operating point:")
         for k, v in op.items():
             if isinstance(v, float) and math.isfinite(v):
                 unit = "m³/s" if k.startswith("groove_flow_") else units[k]
+                if k == "theta_end_deg" and gumbel:
+                    console.print(
+                        f"  {k} = {v:.6g} " + escape(f"[{unit}]") + " (by construction: the gumbel film"
+                        " is cut at the minimum film, θ = π; a computed rupture: --model long or finite"
+                        " with --cavitation reynolds)",
+                        soft_wrap=True,
+                    )
+                    continue
                 console.print(f"  {k} = {v:.6g} " + escape(f"[{unit}]"))
 
 

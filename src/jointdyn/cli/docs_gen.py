@@ -8,7 +8,8 @@ paper's cases and the beyond-the-paper cases) and the clearance × viscosity swe
   of ``docs/reproduction.md`` (``reproduce-table``, ``dry-ensemble``, ``reproduce-claims``,
   ``sweep-claims``), and
 * the figures in ``docs/figures/`` (``moment_overlay.png``, ``orbit_*.png``,
-  ``film_thickness.png``, ``joint_force.png``, ``moment_beyond.png``, ``sweep_*.png``).
+  ``film_thickness.png``, ``joint_force.png``, ``moment_beyond.png``, ``sweep_*.png``,
+  ``validation_raimondi_boyd.png``; ``--validation-figure`` redraws that one only).
 
 ``python -m jointdyn.cli.docs_gen --check`` recomputes the numbers only and exits 1 listing every
 README number that is out of date (``tests/test_docs_current.py`` runs the same check).
@@ -256,11 +257,26 @@ def generate(
             atomic.write_bytes(figures / f, (Path(tmp) / "repro" / f).read_bytes())
         ds = sweep_dataset(Path(tmp) / "sweep", workers=workers)
         sweep_figures(ds, figures)
+        validation_figure(figures)
     new = _blocks_now(runs, ds, ens)
     for doc in (readme, *pages):
         if doc.exists():
             atomic.write_text(doc, replace_blocks(doc.read_text(encoding="utf-8"), new))
     return new
+
+
+VALIDATION_FIGURE = "validation_raimondi_boyd.png"
+
+
+def validation_figure(figures: Path = FIGURES) -> str:
+    """docs/validation.md's figure (committed, so the page shows it on GitHub too); returns the
+    digest of its plotted arrays, which the PNG carries (tests/test_docs_current.py)."""
+    from jointdyn.bearing.validation import plot_validation
+
+    data = ROOT / "tests" / "data"
+    return plot_validation(
+        data / "raimondi_boyd_1958.csv", figures / VALIDATION_FIGURE, data / "butenschoen_1976.csv"
+    )
 
 
 def sweep_figures(ds, figures: Path) -> None:
@@ -302,10 +318,16 @@ def check(readme: Path = README, workers: int | None = None, pages=PAGES) -> lis
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="python -m jointdyn.cli.docs_gen", description=__doc__.split("\n\n")[0])
     ap.add_argument("--check", action="store_true", help="only compare the README numbers; exit 1 if stale")
+    ap.add_argument(
+        "--validation-figure", action="store_true", help=f"only redraw docs/figures/{VALIDATION_FIGURE}"
+    )
     ap.add_argument("--workers", type=int, default=None, help="processes for the sweep (default: all cores)")
     a = ap.parse_args(argv)
     if not README.exists():
         ap.error(f"no README.md at {README}: run from a source checkout (pip install -e .)")
+    if a.validation_figure:
+        print(f"wrote {FIGURES / VALIDATION_FIGURE} (plotted data {validation_figure()[:12]}…)")
+        return 0
     if a.check:
         problems = check(workers=a.workers)
         for p in problems:
@@ -313,7 +335,7 @@ def main(argv=None) -> int:
         print("README numbers are current" if not problems else f"{len(problems)} stale number(s)")
         return 1 if problems else 0
     new = generate(workers=a.workers)
-    print(f"wrote {len(new)} README blocks and {len(REPRO_FIGURES) + 2} figures in {FIGURES}")
+    print(f"wrote {len(new)} README blocks and {len(REPRO_FIGURES) + 3} figures in {FIGURES}")
     return 0
 
 

@@ -117,23 +117,39 @@ def film_force_table(src, model, out=None) -> int:
             tmp = stack.enter_context(atomic.replacing(Path(out), devices=True))
             fout = stack.enter_context(open(tmp, "w", newline="", encoding="utf-8"))
         reader, writer = csv.reader(fin), csv.writer(fout)
+        n = 0
         try:
             head = _header(reader, src)
-            writer.writerow(head + list(OUT_COLUMNS))
-            n = 0
             while True:
                 block = [row for _, row in zip(range(BLOCK), reader) if row]
                 if not block:
                     break
                 F = _forces(model, _parse(block, head, n + 1, src), n + 1, src)
+                if n == 0:  # the header only once the first block computed: an error comes first
+                    writer.writerow(head + list(OUT_COLUMNS))
                 for i, row in enumerate(block):
                     writer.writerow(row + [f"{F[k][i]:.10g}" for k in OUT_COLUMNS])
                 n += len(block)
                 interrupts.check()
         except UnicodeDecodeError as err:
+            _mark_incomplete(fout, out, n)
             raise ValueError(f"{src}: not a UTF-8 text file ({err.reason})") from None
         except csv.Error as err:
+            _mark_incomplete(fout, out, n)
             raise ValueError(f"{src}: line {reader.line_num}: malformed CSV ({err})") from None
+        except BaseException:
+            _mark_incomplete(fout, out, n)
+            raise
         if n == 0:
             raise ValueError(f"{src}: no data rows")
     return n
+
+
+def _mark_incomplete(fout, out, n: int) -> None:
+    """Streaming to stdout, a failure after ``n`` rows were written (blocks of ``BLOCK`` rows)
+    leaves a partial table: end it with a line that is not a row (one field, starting with ``#``),
+    so the output is plainly not a whole table (a file ``out`` is written atomically and never
+    appears)."""
+    if out is None and n:
+        fout.write(f"# INCOMPLETE: film-force stopped after {n} rows (the error is on stderr)\n")
+        fout.flush()
