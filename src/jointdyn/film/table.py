@@ -19,7 +19,6 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn.core import atomic, interrupts
-from jointdyn.film.jfo_states import SteadyJFO
 from jointdyn.film.models import FILM_MODELS, film_forces
 
 BLOCK = 4096  # rows per evaluation: memory stays O(BLOCK) whatever the file size
@@ -81,6 +80,8 @@ def _forces(model, data: np.ndarray, start: int, src) -> dict:
         i = bad[0]
         ci, ri = float(c[i]), float(r[i])
         raise ValueError(f"{src}: row {start + i}: clearance = {ci!r} [m] must be < radius = {ri!r} (c < R)")
+    from jointdyn.film.jfo_states import SteadyJFO
+
     forces = model.forces if isinstance(model, SteadyJFO) else partial(film_forces, model)
     try:
         return forces(*data.T)
@@ -99,6 +100,8 @@ def film_force_table(src, model, out=None) -> int:
     (a path, written atomically; None = stdout). ``model``: a film model (name or instance) or
     the steady mass-conserving film :class:`~jointdyn.film.jfo_states.SteadyJFO` [T343]. Returns
     the number of rows."""
+    from jointdyn.film.jfo_states import SteadyJFO  # the 2-D solver (scipy.sparse) only when used
+
     known = type(model) in FILM_MODELS.values() or isinstance(model, SteadyJFO)
     if not known and (not isinstance(model, str) or model not in FILM_MODELS):
         raise ValueError(f"--model {model!r} is unknown; valid: {', '.join(FILM_MODELS)}")
