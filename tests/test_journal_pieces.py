@@ -26,9 +26,9 @@ def _present(family):
 def test_laws_hold_the_used_laws_and_pieces_and_join_for_shared_kinds():
     lub = model_system("slider-crank", {"joint": "alshaer2005"}, revs=0.1)[0]
     dry = model_system("slider-crank", {"joint": "dry"}, revs=0.1)[0]
-    film, contact, friction, thermal, asperity = journal_laws(lub.fint)
+    film, contact, friction, thermal, asperity, jfo = journal_laws(lub.fint)
     assert len(_present(film)) == 1 and _present(contact) == [] == _present(friction)
-    assert thermal is None and asperity is None
+    assert thermal is None and asperity is None and jfo is None
     d = journal_laws(dry.fint)
     assert _present(d[0]) == [] and len(_present(d[1])) == 1
     both = kinds_union(kinds_of(lub.fint), kinds_of(dry.fint))[JOURNAL]
