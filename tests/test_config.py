@@ -15,7 +15,7 @@ import pytest
 from jointdyn.core.constraints import CONSTRAINTS, Revolute, Translational
 from jointdyn.errors import ModelError
 from jointdyn.forces.contact_laws import CONTACT_LAWS, HuntCrossley
-from jointdyn.forces.elements import FORCE_ELEMENTS
+from jointdyn.forces.elements import FORCE_ELEMENTS, output_slots
 from jointdyn.forces.friction_laws import FRICTION_LAWS, Ambrosio, Coulomb
 from jointdyn.forces.journal import JournalBearing
 from jointdyn.forces.springs import SpringDamper
@@ -373,7 +373,7 @@ def test_run_model_file_writes_results_and_timeseries(tmp_path):
         rows = list(csv.reader(f))
     header, data = rows[0], np.array(rows[1:], dtype=float)
     assert header[0] == "time [s]" and "rocker.phi [rad]" in header and "lambda.drive[0] [N·m]" in header
-    n_outputs = sum(len(type(e).OUTPUTS) for e in res.system.elements)  # every element's outputs
+    n_outputs = sum(len(output_slots(e)) for e in res.system.elements)  # every element's outputs
     assert data.shape == (21, 1 + 2 * res.system.n + res.lam.shape[1] + n_outputs)
     np.testing.assert_array_equal(data[:, 0], res.t)
     np.testing.assert_array_equal(

@@ -9,6 +9,7 @@ import textwrap
 import numpy as np
 from test_coldstart import LISTENER, _pair_system
 
+from jointdyn.film.models import Finite
 from jointdyn.forces.elements import NOUT, eval_forces, journal_laws, kinds_of, kinds_union
 from jointdyn.forces.journal import JOURNAL, JournalBearing
 from jointdyn.forces.mixed import GreenwoodTrippContact
@@ -25,9 +26,9 @@ def _present(family):
 def test_laws_hold_the_used_laws_and_pieces_and_join_for_shared_kinds():
     lub = model_system("slider-crank", {"joint": "alshaer2005"}, revs=0.1)[0]
     dry = model_system("slider-crank", {"joint": "dry"}, revs=0.1)[0]
-    film, contact, friction, thermal, asperity = journal_laws(lub.fint)
+    film, contact, friction, thermal, asperity, jfo = journal_laws(lub.fint)
     assert len(_present(film)) == 1 and _present(contact) == [] == _present(friction)
-    assert thermal is None and asperity is None
+    assert thermal is None and asperity is None and jfo is None
     d = journal_laws(dry.fint)
     assert _present(d[0]) == [] and len(_present(d[1])) == 1
     both = kinds_union(kinds_of(lub.fint), kinds_of(dry.fint))[JOURNAL]
@@ -39,8 +40,10 @@ def test_laws_hold_the_used_laws_and_pieces_and_join_for_shared_kinds():
         asperity=GreenwoodTrippContact(1e-6),
     )  # fmt: skip
     pieces = journal_laws(_pair_system(el).fint)[3:]
-    assert pieces == (1, 1)
-    assert kinds_union(kinds_of(lub.fint), kinds_of(_pair_system(el).fint))[JOURNAL][3:] == (1, 1)
+    assert pieces == (1, 1, None)  # thermal, asperity; no jfo film
+    assert kinds_union(kinds_of(lub.fint), kinds_of(_pair_system(el).fint))[JOURNAL][3:] == (1, 1, None)
+    jfo = JournalBearing("a", "A", "b", "B", R + C, R, L, 0.04, film=Finite(cavitation="jfo"))
+    assert journal_laws(_pair_system(jfo).fint)[3:] == (None, None, 1)
 
 
 def test_bearing_with_both_pieces_gives_the_same_forces_as_every_law():
@@ -91,5 +94,13 @@ def test_plain_bearing_compiles_its_film_law_only(tmp_path):
     cold = json.loads(p.stdout.strip().splitlines()[-1])
     assert any(n.endswith("journal.journal_element") for n in cold)
     assert any(n.endswith("kernels.pi_film_force") for n in cold)  # the alshaer2005 (π-film) kernel
-    other = ("ott_force", "short_force", "finite_force", "asperity_loads", "thermal_step", "viscosity_of")
+    other = (
+        "ott_force",
+        "short_force",
+        "finite_force",
+        "asperity_loads",
+        "thermal_step",
+        "viscosity_of",
+        "jfo_step",
+    )
     assert not [n for n in cold if n.endswith(other) or ".contact_laws." in n or ".friction_laws." in n]

@@ -20,6 +20,12 @@ from numba import njit
 
 from jointdyn.film.fv import assemble
 
+#: the active set's dead band: a full cell cavitates at P < −P_TOL·(|ω| + 1 rad/s) [1/s], a
+#: cavitated one fills at θ_f > 1 + FILL_TOL; values at round-off (the centred journal of an
+#: unloaded film, P ≡ 0) otherwise flip the set forever [T306]
+P_TOL = 1e-10
+FILL_TOL = 1e-12
+
 
 @dataclass(frozen=True)
 class Geometry:
@@ -201,6 +207,7 @@ def jfo_step(
     P = np.empty(n)
     th = np.empty(n)
     its = -1
+    p_tol = P_TOL * (abs(omega) + 1.0)  # round-off of P in a centred, unloaded film [T306]
     for it in range(1, max_iter + 1):
         for q in range(n):
             known[q] = 0.0 if cp[q] else 1.0
@@ -228,11 +235,11 @@ def jfo_step(
             if cp[q]:
                 P[q] = 0.0
                 th[q] = x[q]
-                new = not (th[q] > 1.0)
+                new = not (th[q] > 1.0 + FILL_TOL)
             else:
                 P[q] = x[q]
                 th[q] = 1.0
-                new = P[q] < 0.0
+                new = P[q] < -p_tol
             if new != cp[q]:
                 same = False
                 cp[q] = new

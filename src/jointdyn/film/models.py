@@ -24,6 +24,7 @@ t = ẑ × u [N] (conventions of docs/theory.md). Theory: docs/theory.md [T20–
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import ClassVar
 
@@ -82,32 +83,64 @@ class Short:
 @dataclass(frozen=True)
 class Finite:
     """Finite-length bearing: 2-D Reynolds equation solved numerically, tabulated per L/D and
-    cavitation condition (built once, cached on disk) [T36–T38, T70–T80]."""
+    cavitation condition (built once, cached on disk) [T36–T38, T70–T80]; with ``cavitation =
+    "jfo"`` the transient mass-conserving film, its cell contents carried by the element [T306]."""
 
     cavitation: str = DEFAULT_CAVITATION
     """film rupture condition, a name in :mod:`jointdyn.film.cavitation`'s registry: ``gumbel``
     (half-Sommerfeld: negative pressures clipped), ``reynolds`` (Swift–Stieber: p ≥ 0 and
-    ∂p/∂θ = 0 at rupture, the classical design tables) or a registered plugin [T88]"""
+    ∂p/∂θ = 0 at rupture, the classical design tables), ``jfo`` (mass-conserving, transient: no
+    table, the film's history is part of the element [T306]) or a registered plugin [T88]"""
+    supply_angle: float = 90.0
+    """jfo only: centre of the axial supply groove in the bushing frame, from the bushing
+    body's x axis counter-clockwise [deg], in [0, 360)"""
+    supply_width: float = 20.0
+    """jfo only: angular width of the supply groove [deg], in (0, 360)"""
+    supply_pressure: float = 0.0
+    """jfo only: gauge pressure of the oil in the supply groove [Pa], ≥ 0"""
+    cells_around: int = 36
+    """jfo only: cells of the uniform mesh around the bearing [-], 8 … 720"""
+    cells_half_length: int = 8
+    """jfo only: cells of the uniform mesh on the half length [-], 2 … 64"""
     code: ClassVar[int] = FINITE
     kernel: ClassVar = finite_force
     tag: ClassVar[str] = "T36"
     PARAMS: ClassVar[tuple[str, ...]] = ()
 
     def __post_init__(self):
-        from jointdyn.film.cavitation import condition, names
+        from jointdyn.film.cavitation import names
 
         if self.cavitation not in names():
             raise ValueError(f"Finite.cavitation = {self.cavitation!r}: unknown; valid: {list(names())}")
-        if condition(self.cavitation).mass_conserving:
-            raise ValueError(
-                f"Finite.cavitation = {self.cavitation!r}: a mass-conserving film needs its content "
-                "history, which the dynamic finite table has not; use it in bearing-table (steady)"
-            )
+        checks = (
+            ("supply_angle", "deg", "in [0, 360)", lambda v: 0.0 <= v < 360.0),
+            ("supply_width", "deg", "in (0, 360)", lambda v: 0.0 < v < 360.0),
+            ("supply_pressure", "Pa", ">= 0", lambda v: v >= 0.0),
+            ("cells_around", "-", "an integer in [8, 720]", lambda v: v == int(v) and 8 <= v <= 720),
+            ("cells_half_length", "-", "an integer in [2, 64]", lambda v: v == int(v) and 2 <= v <= 64),
+        )
+        for name, unit, allowed, ok in checks:
+            v = getattr(self, name)
+            if not (isinstance(v, (int, float)) and math.isfinite(v) and ok(v)):
+                raise ValueError(f"Finite.{name} = {v!r} [{unit}]: must be {allowed}")
+
+    @property
+    def transient(self) -> bool:
+        """True for the mass-conserving film: no table, the element carries its contents [T306]."""
+        from jointdyn.film.cavitation import condition
+
+        return condition(self.cavitation).mass_conserving
 
     def table(self, length: float, journal_radius: float) -> np.ndarray:
         """The force table of a bearing of this length and journal radius [m, m]."""
         from jointdyn.film.finite import build_table
 
+        if self.transient:
+            raise ValueError(
+                f"Finite.cavitation = {self.cavitation!r}: a mass-conserving film needs its content "
+                "history, which a table has not; it runs as a journal_bearing element in the "
+                "multibody loop [T306] (steady: film-force/bearing-table --cavitation jfo)"
+            )
         return build_table(length / (2.0 * journal_radius), cavitation=self.cavitation)
 
 

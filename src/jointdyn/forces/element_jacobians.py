@@ -33,6 +33,7 @@ from jointdyn.forces.journal import (
     FRICTION_P1,
     H_ASP,
     IN_CONTACT,
+    JFO,
     JOURNAL,
     LEN,
     MU,
@@ -49,7 +50,7 @@ from jointdyn.forces.journal import (
     XI_GUARD,
     journal_kinematics,
 )
-from jointdyn.forces.journal_pieces import asperity_on, film_viscosity
+from jointdyn.forces.journal_pieces import asperity_on, film_viscosity, jfo_on
 from jointdyn.forces.kinds import kind_switch
 from jointdyn.forces.simple_jacobians import (
     harmonic_torque_dt,
@@ -75,7 +76,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = np.sqrt(ex * ex + ey * ey)
-    if e == 0.0 or asperity_on(laws, ip[ASPERITY]):  # asperity tables [T315]: differenced
+    if e == 0.0 or asperity_on(laws, ip[ASPERITY]) or jfo_on(laws, ip[JFO]):  # [T306, T315]: differenced
         return 1
     ux = ex / e
     uy = ey / e

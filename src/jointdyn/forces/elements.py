@@ -26,11 +26,13 @@ from jointdyn.forces.journal import (
     FRICTION,
     IMPACTS,
     IN_CONTACT,
+    JFO,
     JOURNAL,
     MAX_PEN,
     O_LOSS,
     ONSET_TOL,
     ONSET_VEL,
+    R_J,
     THERMAL,
     THERMAL_P0,
     THERMAL_P1,
@@ -40,8 +42,19 @@ from jointdyn.forces.journal import (
     journal_element,
     penetration,
 )
+from jointdyn.forces.journal import CLR as _CLR
+from jointdyn.forces.journal import H_ASP as _H_ASP
 from jointdyn.forces.journal import NO_CONTACT as _NO_CONTACT
-from jointdyn.forces.journal_pieces import ASPERITY_PIECE, THERMAL_PIECE, thermal_limit
+from jointdyn.forces.journal import XI_GUARD as _XI_GUARD
+from jointdyn.forces.journal_geometry import journal_kinematics
+from jointdyn.forces.journal_pieces import (
+    ASPERITY_PIECE,
+    JFO_PIECE,
+    THERMAL_PIECE,
+    jfo_commit_gate,
+    jfo_limit,
+    thermal_limit,
+)
 from jointdyn.forces.kinds import kind_gate, kind_loop, kinds_tuple
 from jointdyn.forces.springs import SPRING_DAMPER, SpringDamper, spring_damper
 from jointdyn.forces.tabulated import TABLE as TAB_TABLE
@@ -71,6 +84,7 @@ NOUT = max(len(cls.OUTPUTS) for cls in FORCE_ELEMENTS.values())
 
 FILM_BREAKDOWN = 10  # status: ξ ≥ 1 in a bearing without a contact law (+ element index)
 THERMAL_RANGE = 1_000_000  # status: a bearing's oil temperature left its viscosity law (+ element index)
+JFO_FAILED = 2_000_000  # status: a jfo film's active set did not settle on an accepted step (+ index)
 
 
 # One compiled kernel per element code. A kernel with the element signature
@@ -83,7 +97,7 @@ FORCE_KERNELS = {
     SPRING_DAMPER: (spring_damper, "q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k], Q, out[k]"),
     JOURNAL: (
         journal_element,
-        "q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, Q, out[k], kind",
+        "t, q, qd, mem[k], fint[k, BODY_I], fint[k, BODY_J], fint[k], freal[k], tables, Q, out[k], kind",
     ),
     TABULATED_FORCE: (
         tabulated_force,
@@ -113,9 +127,9 @@ def journal_laws(fint: np.ndarray) -> tuple:
     def family(registry, column):
         return law_tuple(registry, sorted(set(rows[:, column].tolist())))
 
-    pieces = tuple(1 if (rows[:, column] != 0).any() else None for column in (THERMAL, ASPERITY))
+    pieces = tuple(1 if (rows[:, column] != 0).any() else None for column in (THERMAL, ASPERITY, JFO))
     laws = (family(FILM_MODELS, FILM), family(CONTACT_LAWS, CONTACT), family(FRICTION_LAWS, FRICTION))
-    assert len(laws) == THERMAL_PIECE and len(laws) + 1 == ASPERITY_PIECE
+    assert (THERMAL_PIECE, ASPERITY_PIECE, JFO_PIECE) == (len(laws), len(laws) + 1, len(laws) + 2)
     return (*laws, *pieces)
 
 
@@ -183,7 +197,7 @@ def _heat_oil(t, q, qd, mem, k, fint, freal, tables, laws):
     scratch = np.zeros(q.shape[0])
     out = np.zeros(NOUT)
     bi, bj = fint[k, BODY_I], fint[k, BODY_J]
-    journal_element(q, qd, mem[k], bi, bj, fint[k], freal[k], tables, scratch, out, laws)
+    journal_element(t, q, qd, mem[k], bi, bj, fint[k], freal[k], tables, scratch, out, laws)
     return thermal_step(mem[k], freal[k, THERMAL_P0:THERMAL_P1], t, out[O_LOSS])
 
 
@@ -197,6 +211,19 @@ _heat_gate = law_gate(
 
 
 @njit(inline="always")
+def _commit_film(t, q, qd, mem, k, fint, freal, tables, laws):
+    """Commit the jfo film of element k at the accepted state [T307]."""
+    r = freal[k]
+    ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(
+        q, qd, fint[k, BODY_I], fint[k, BODY_J], r
+    )
+    c = r[_CLR]
+    cap = min((c - r[_H_ASP]) / c if fint[k, CONTACT] != _NO_CONTACT else _XI_GUARD, _XI_GUARD)
+    bi = fint[k, BODY_I]
+    return jfo_commit_gate(laws, t, mem[k], tables, fint[k, JFO], q, bi, ex, ey, wi, wj, r[R_J], c, cap)
+
+
+@njit(inline="always")
 def _journal_memory(t, q, qd, mem, fint, freal, tables, kinds):
     laws = _journal_kind(kinds)
     for k in range(fint.shape[0]):
@@ -204,6 +231,8 @@ def _journal_memory(t, q, qd, mem, fint, freal, tables, kinds):
             continue
         if fint[k, THERMAL] != 0 and _heat_gate(laws, t, q, qd, mem, k, fint, freal, tables, laws) != 0:
             return THERMAL_RANGE + k
+        if fint[k, JFO] != 0 and _commit_film(t, q, qd, mem, k, fint, freal, tables, laws) != 0:
+            return JFO_FAILED + k
         delta, dd = penetration(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k])
         if fint[k, CONTACT] == _NO_CONTACT:
             if delta >= 0.0:  # ξ ≥ 1 with no contact law (c_c = c here)
@@ -241,6 +270,8 @@ def _journal_step_limit(q, qd, mem, fint, freal, kinds):
     for k in range(fint.shape[0]):
         if fint[k, TYPE] == JOURNAL and fint[k, THERMAL] != 0:
             h = min(h, thermal_limit(laws, mem[k], freal[k, THERMAL_P0:THERMAL_P1]))
+        if fint[k, TYPE] == JOURNAL and fint[k, JFO] != 0:
+            h = min(h, jfo_limit(laws, mem[k]))  # [T308]
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == _NO_CONTACT or mem[k, IN_CONTACT] > 0.5:
             continue
         delta, dd = penetration(q, qd, fint[k, BODY_I], fint[k, BODY_J], freal[k])
@@ -284,13 +315,25 @@ def step_limit(q, qd, mem, fint, freal, kinds=None):
     return _step_gate(kinds, q, qd, mem, fint, freal, kinds)
 
 
+def memory_slots(e) -> dict:
+    """Memory slots element ``e`` uses: its ``memory_slots()`` if declared, else its ``MEMORY``."""
+    return e.memory_slots() if hasattr(e, "memory_slots") else type(e).MEMORY
+
+
+def output_slots(e) -> dict:
+    """Outputs element ``e`` writes (name -> unit): its ``output_slots()`` if declared, else its
+    class's ``OUTPUTS`` (a journal bearing's jfo film outputs only with the film [T306])."""
+    return e.output_slots() if hasattr(e, "output_slots") else type(e).OUTPUTS
+
+
 def element_tables(elements, body_index, point_of):
     """Pack force-element dataclasses into (fint, freal, tables, mem0) through their declared
     layouts: each element's ``pack(tables, body_index) -> (ints, reals, blocks)`` names its own
     slots; the header (code, bodies) and the two points are filled here for all."""
     fint = np.zeros((len(elements), NINT), dtype=np.int64)
     freal = np.zeros((len(elements), NREAL))
-    mem0 = np.zeros((len(elements), NMEM))
+    width = max([NMEM, *(e.memory_width() for e in elements if hasattr(e, "memory_width"))])
+    mem0 = np.zeros((len(elements), width))  # a jfo film's cells widen the rows [T306]
     tabs = [np.zeros((1, 2))]  # table 0: unused placeholder; tables are (rows, 2) slices
     for k, e in enumerate(elements):
         cls = type(e)
@@ -302,8 +345,7 @@ def element_tables(elements, body_index, point_of):
         pj = point_of(e.body_j, e.point_j) if e.point_j is not None else (0.0, 0.0)  # couples: no point
         points = {"xi_i": pi[0], "eta_i": pi[1], "xi_j": pj[0], "eta_j": pj[1]}
         cls.REAL.pack(freal[k], {**points, **reals}, blocks)
-        m0 = getattr(e, "thermal", None)
-        for name, v in (m0.memory0() if m0 is not None else {}).items():  # initial memory [T311]
+        for name, v in (e.memory0() if hasattr(e, "memory0") else {}).items():  # [T307, T311]
             mem0[k, list(cls.MEMORY).index(name)] = v
     rows = max(t.shape[0] for t in tabs)
     tables = np.zeros((len(tabs), rows, 2))

@@ -29,8 +29,7 @@ from typing import ClassVar
 
 from numba import njit
 
-from jointdyn.core.kinematics import body_state, point_kinematics
-from jointdyn.core.layout import ETA_I, ETA_J, HEADER, POINTS, XI_I, XI_J, Layout, check_finite
+from jointdyn.core.layout import HEADER, POINTS, Layout, check_finite
 from jointdyn.errors import PhysicsWarning
 from jointdyn.film.models import FILM_MODELS, FILM_WIDTH, film_dispatch, film_model, film_name
 from jointdyn.film.models import NONE as NO_FILM
@@ -39,8 +38,22 @@ from jointdyn.forces.contact_laws import CONTACT_LAWS, CONTACT_WIDTH, contact_di
 from jointdyn.forces.contact_laws import NONE as NO_CONTACT
 from jointdyn.forces.friction_laws import FRICTION_LAWS, FRICTION_WIDTH, friction_dispatch
 from jointdyn.forces.friction_laws import NONE as NO_FRICTION
-from jointdyn.forces.journal_pack import pack_journal
-from jointdyn.forces.journal_pieces import asperity_terms, film_viscosity
+from jointdyn.forces.jfo_film import BASE as JFO_BASE
+from jointdyn.forces.jfo_film import MEMORY as JFO_MEMORY
+from jointdyn.forces.jfo_film import OUTPUTS as JFO_OUTPUTS
+from jointdyn.forces.journal_geometry import CLR as GEOM_CLR
+from jointdyn.forces.journal_geometry import H_ASP as GEOM_H_ASP
+from jointdyn.forces.journal_geometry import journal_kinematics, penetration  # noqa: F401  (re-exported)
+from jointdyn.forces.journal_pack import (
+    check_jfo,
+    failure_hint,
+    memory0,
+    memory_slots,
+    memory_width,
+    output_slots,
+    pack_journal,
+)
+from jointdyn.forces.journal_pieces import asperity_terms, film_viscosity, jfo_terms
 from jointdyn.forces.mixed import ASPERITY_MODELS
 from jointdyn.forces.mixed import WIDTH as ASPERITY_WIDTH
 from jointdyn.forces.thermal import BASE as THERMAL_BASE
@@ -72,7 +85,7 @@ REAL = Layout(
         "asperity": ASPERITY_WIDTH,
     },
 )
-INT = Layout(HEADER + ("film", "contact", "friction", "table", "shear", "thermal", "asperity"))
+INT = Layout(HEADER + ("film", "contact", "friction", "table", "shear", "thermal", "asperity", "jfo"))
 OUTPUTS = {
     "ex": "m",
     "ey": "m",
@@ -86,20 +99,23 @@ OUTPUTS = {
     "power_loss": "W",
     "power_exchanged": "W",
 }
+BEARING_OUTPUTS = OUTPUTS | JFO_OUTPUTS  # the jfo film's outputs, used by a bearing with one [T306]
 MEMORY = {"in_contact": "-", "onset_velocity": "m/s", "impacts": "-", "max_penetration": "m"}
-assert len(MEMORY) == THERMAL_BASE
+assert len(MEMORY) == THERMAL_BASE and len(MEMORY) + len(THERMAL_MEMORY) == JFO_BASE
 
 R_B, R_J, LEN, MU, CLR, H_ASP, ONSET_TOL, V_MIN = REAL.slots(*REAL.names[4:])
+assert (CLR, H_ASP) == (GEOM_CLR, GEOM_H_ASP)
 FILM_P0, FILM_P1 = REAL.block("film").start, REAL.block("film").stop
 CONTACT_P0, CONTACT_P1 = REAL.block("contact").start, REAL.block("contact").stop
 FRICTION_P0, FRICTION_P1 = REAL.block("friction").start, REAL.block("friction").stop
-FILM, CONTACT, FRICTION, TABLE, SHEAR, THERMAL, ASPERITY = INT.slots(*INT.names[3:])
+FILM, CONTACT, FRICTION, TABLE, SHEAR, THERMAL, ASPERITY, JFO = INT.slots(*INT.names[3:])
 ASP_P0 = REAL.block("asperity").start
 THERMAL_P0, THERMAL_P1 = REAL.block("thermal").start, REAL.block("thermal").stop
 IN_CONTACT, ONSET_VEL, IMPACTS, MAX_PEN = Layout(MEMORY).slots(*MEMORY)
 O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN, O_TORQUE, O_LOSS, O_EXCH = Layout(OUTPUTS).slots(
     *OUTPUTS
 )
+O_CONTENT, O_INFLOW, O_SIDE = Layout(BEARING_OUTPUTS).slots(*JFO_OUTPUTS)
 ASPERITY_MAX = 0.5  # asperity height ≤ this fraction of the clearance [T283]
 XI_GUARD = 1.0 - 1e-9  # film evaluated at most here when no contact law catches ξ → 1
 
@@ -185,18 +201,7 @@ class ClearanceJoint:
         clearance c [m] [T186] (``SimConfig.error_scale = "clearance"``)."""
         return self.clearance
 
-    def failure_hint(self, name: str, out: dict) -> str:
-        """Capability: what this element's outputs ``out`` (name -> value) at a failed run's last
-        state say about the failure, or ''. Near the wall (ξ > 0.99) the film is stiff: the usual
-        cause of a step-size collapse; a film without a contact law cannot carry the load there."""
-        if not out["xi"] > 0.99:
-            return ""
-        advice = (
-            "; the film alone cannot carry the load there — give the bearing a contact law (mixed regime)"
-            if self._film() is not None and self.contact is None
-            else ""
-        )
-        return f"element {name!r} was at ξ = {out['xi']:.6f} (h_min = {out['h_min']:.3g} m){advice}"
+    failure_hint = failure_hint
 
     @classmethod
     def example(cls):
@@ -258,10 +263,12 @@ class JournalBearing:
     centred: ClassVar[bool] = True
     REAL: ClassVar[Layout] = REAL
     INT: ClassVar[Layout] = INT
-    OUTPUTS: ClassVar[dict[str, str]] = OUTPUTS
-    """output columns written by the kernel (name -> unit), world frame, force on the journal"""
-    MEMORY: ClassVar[dict[str, str]] = MEMORY | THERMAL_MEMORY
-    """memory slots (name -> unit), changed only after accepted steps (oil temperature [T311])"""
+    OUTPUTS: ClassVar[dict[str, str]] = BEARING_OUTPUTS
+    """output columns written by the kernel (name -> unit), world frame, force on the journal;
+    the jfo film's (content, flows) only with ``film`` finite with cavitation jfo [T306]"""
+    MEMORY: ClassVar[dict[str, str]] = MEMORY | THERMAL_MEMORY | JFO_MEMORY
+    """memory slots (name -> unit), changed only after accepted steps (oil temperature [T311],
+    the jfo film [T306]; its cell contents follow the named slots)"""
     STIFF: ClassVar[bool] = True
     """capability: the film makes the equations stiff (``solver="auto"`` then picks radau5 [T116])"""
     ORBIT: ClassVar[tuple[str, str]] = ("ex", "ey")
@@ -275,9 +282,10 @@ class JournalBearing:
     def _film(self):
         return film_model(self.film)
 
-    def memory_slots(self) -> dict[str, str]:
-        """The memory slots this bearing uses: the oil temperature's only with ``thermal``."""
-        return self.MEMORY if self.thermal is not None else MEMORY
+    memory_slots = memory_slots
+    output_slots = output_slots
+    memory_width = memory_width
+    memory0 = memory0
 
     @classmethod
     def example(cls, film="alshaer2005"):
@@ -320,6 +328,7 @@ class JournalBearing:
             raise ValueError(
                 f"{o}.film = {self.film!r}: unknown film model; valid: {sorted(FILM_MODELS)}"
             ) from None
+        check_jfo(self)
         limit = getattr(film_model(self.film), "max_length_over_diameter", math.inf)
         ld = self.length / (2.0 * self.journal_radius)
         if ld > limit:
@@ -331,26 +340,7 @@ class JournalBearing:
 
 
 @njit(cache=True)
-def journal_kinematics(q, qd, bi, bj, r):
-    """e, ė [m, m/s], arms s_i, s_j [m] and body rates ω_i, ω_j [rad/s] [T14]."""
-    pix, piy, six, siy, vix, viy = point_kinematics(q, qd, bi, r[XI_I], r[ETA_I])
-    pjx, pjy, sjx, sjy, vjx, vjy = point_kinematics(q, qd, bj, r[XI_J], r[ETA_J])
-    wi = body_state(q, qd, bi)[5]
-    wj = body_state(q, qd, bj)[5]
-    return pjx - pix, pjy - piy, vjx - vix, vjy - viy, six, siy, sjx, sjy, wi, wj
-
-
-@njit(cache=True)
-def penetration(q, qd, bi, bj, r):
-    """Contact penetration δ = |e| − c_c [m] and its rate δ̇ [m/s] [T16]."""
-    ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
-    e = math.sqrt(ex * ex + ey * ey)
-    ed = (ex * edx + ey * edy) / e if e > 0.0 else math.sqrt(edx * edx + edy * edy)
-    return e - (r[CLR] - r[H_ASP]), ed
-
-
-@njit(cache=True)
-def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
+def journal_element(t, q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
     """Film and/or contact forces of one journal element into Q [T14–T16]; fills ``out``
     (``OUTPUTS``). ξ ≥ 1 probed with no contact law is evaluated guarded at ξ = 1 − 1e-9 (film
     breakdown is reported on accepted steps by ``elements.advance_memory``). ``laws``: the film,
@@ -377,9 +367,19 @@ def journal_element(q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
         xi_f = min(xi, xi_cap, XI_GUARD)
         xid = (ux * edx + uy * edy) / c
         xi_om = xi_f * (wj + wi) - 2.0 * (tx * edx + ty * edy) / c  # ξΩ [T14]
-        fr, ft = film_dispatch(
-            laws, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
-        )
+        if ip[JFO] != 0:  # the transient jfo film from its committed contents [T306]
+            cap = min(xi_cap, XI_GUARD)
+            fr, ft, vol, q_in, q_side = jfo_terms(
+                laws, t, mem, tables, ip[JFO], q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu_f, r[R_J], c, cap
+            )
+            out[O_CONTENT] = vol
+            out[O_INFLOW] = q_in
+            out[O_SIDE] = q_side
+        else:
+            tab = tables[ip[TABLE]]
+            fr, ft = film_dispatch(
+                laws, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tab
+            )
         # asperities in parallel with the film, boundary friction [T314, T322]
         fa, tb = asperity_terms(laws, ip[ASPERITY], xi, wj - wi, tables, r[R_J], r[ASP_P0], r[ASP_P0 + 1])
         ffx = (fr + fa) * ux + ft * tx

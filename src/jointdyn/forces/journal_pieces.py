@@ -1,6 +1,6 @@
 """The optional pieces of a journal element as type-level choices [T322]: the lumped oil
-temperature (μ(T) of the film [T310–T312]) and Greenwood–Tripp asperity contact with boundary
-friction [T314].
+temperature (μ(T) of the film [T310–T312]), Greenwood–Tripp asperity contact with boundary
+friction [T314] and the transient mass-conserving film (``forces.jfo_film``) [T306].
 
 A journal element's entry of the kinds (``forces.elements.journal_laws``) holds, after its film,
 contact and friction laws, one entry per piece: 1 where an element of the system uses it, None
@@ -17,11 +17,13 @@ import math
 from numba import njit
 
 from jointdyn.core.dispatch import law_gate
+from jointdyn.forces.jfo_film import jfo_commit, jfo_force, jfo_step_limit
 from jointdyn.forces.mixed import asperity_loads
 from jointdyn.forces.thermal import VISC, thermal_step_limit
 
 THERMAL_PIECE = 3  # place of the oil temperature in a journal element's laws
 ASPERITY_PIECE = 4  # place of the asperity contact
+JFO_PIECE = 5  # place of the transient jfo film
 
 
 @njit(inline="always")
@@ -61,3 +63,82 @@ tables at ``slot`` (0: none), relative rate ``dw`` = ω_J − ω_B [rad/s]"""
 
 asperity_on = law_gate("asperity_on", ASPERITY_PIECE, _nonzero, ("slot",), "False")
 """whether the element's asperity slot is set"""
+
+
+@njit(inline="always")
+def bushing_frame(q, bi, ex, ey, edx, edy, wi, c):
+    """(cos φ_i, sin φ_i) of the bushing and the journal's offset e and its rate in the bushing
+    frame [c, c/s]: e_b = Aᵀe, ė_b = Aᵀė − ω_i S e_b (S the quarter turn) [T306]."""
+    co = 1.0
+    si = 0.0
+    if bi >= 0:
+        co = math.cos(q[3 * bi + 2])
+        si = math.sin(q[3 * bi + 2])
+    ebx = (co * ex + si * ey) / c
+    eby = (-si * ex + co * ey) / c
+    vbx = (co * edx + si * edy) / c + wi * eby
+    vby = (-si * edx + co * edy) / c - wi * ebx
+    return co, si, ebx, eby, vbx, vby
+
+
+@njit(inline="always")
+def _jfo(t, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu, R, c, cap):
+    co, si, ebx, eby, vbx, vby = bushing_frame(q, bi, ex, ey, edx, edy, wi, c)
+    fbx, fby, content, inflow, side = jfo_force(
+        t, mem, tables, slot, ebx, eby, vbx, vby, wj - wi, mu, R, c, cap
+    )
+    fx = co * fbx - si * fby
+    fy = si * fbx + co * fby
+    return fx * ux + fy * uy, fy * ux - fx * uy, content, inflow, side
+
+
+jfo_terms = law_gate(
+    "jfo_terms",
+    JFO_PIECE,
+    _jfo,
+    (
+        "t",
+        "mem",
+        "tables",
+        "slot",
+        "q",
+        "bi",
+        "ex",
+        "ey",
+        "edx",
+        "edy",
+        "wi",
+        "wj",
+        "ux",
+        "uy",
+        "mu",
+        "R",
+        "c",
+        "cap",
+    ),
+    "(0.0, 0.0, 0.0, 0.0, 0.0)",
+)
+"""(F_r, F_t [N], content [m³], inflow, side outflow [m³/s]) of the transient jfo film of an
+element with its tables at ``slot`` [T306]"""
+
+
+@njit(inline="always")
+def _commit(t, mem, tables, slot, q, bi, ex, ey, wi, wj, R, c, cap):
+    co, si, ebx, eby, _, _ = bushing_frame(q, bi, ex, ey, 0.0, 0.0, wi, c)
+    return jfo_commit(t, mem, tables, slot, ebx, eby, wj - wi, R, c, cap)
+
+
+jfo_commit_gate = law_gate(
+    "jfo_commit_gate",
+    JFO_PIECE,
+    _commit,
+    ("t", "mem", "tables", "slot", "q", "bi", "ex", "ey", "wi", "wj", "R", "c", "cap"),
+    "0",
+)
+"""commit the jfo film of an accepted step [T307]: 0, or 1 if its active set does not settle"""
+
+jfo_limit = law_gate("jfo_limit", JFO_PIECE, jfo_step_limit, ("mem",), "1e300")
+"""the jfo film's step limit [s] [T308] (1e300 where no element has one)"""
+
+jfo_on = law_gate("jfo_on", JFO_PIECE, _nonzero, ("slot",), "False")
+"""whether the element's jfo slot is set"""

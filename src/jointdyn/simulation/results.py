@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 
 from jointdyn.core import atomic
+from jointdyn.forces.elements import memory_slots as _memory_slots
+from jointdyn.forces.elements import output_slots
 from jointdyn.multibody.model import Model
 from jointdyn.multibody.system import System
 from jointdyn.simulation.saved import load_arrays, load_dataset
@@ -38,11 +40,6 @@ def _version() -> str:
         return _pkg_version("jointdyn")
     except Exception:  # pragma: no cover - running from a source tree
         return "unknown"
-
-
-def _memory_slots(e) -> dict:
-    """Memory slots element ``e`` uses: its ``memory_slots()`` if declared, else its ``MEMORY``."""
-    return e.memory_slots() if hasattr(e, "memory_slots") else type(e).MEMORY
 
 
 @dataclass
@@ -106,8 +103,7 @@ class Results:
         """Time series of output ``output`` of force element ``name`` (see the element class's
         ``OUTPUTS``, which also gives the unit)."""
         k, cls = self._element(name)
-        if output not in cls.OUTPUTS:
-            valid = list(cls.OUTPUTS)
+        if output not in (valid := list(output_slots(self.system.elements[k]))):
             raise KeyError(f"element {name!r} ({cls.__name__}) has no output {output!r}; valid: {valid}")
         return self.eout[:, k, list(cls.OUTPUTS).index(output)]
 
@@ -266,7 +262,8 @@ class Results:
                 v[f"{n}.lambda" + (f"[{r}]" if lam.shape[1] > 1 else "")] = (lam[:, r], lu[r])
         for k, (n, e) in enumerate(zip(s.element_names, s.elements)):
             for j, (o, u) in enumerate(type(e).OUTPUTS.items()):
-                v[f"{n}.{o}"] = (self.eout[:, k, j], u)
+                if o in output_slots(e):
+                    v[f"{n}.{o}"] = (self.eout[:, k, j], u)
             used = _memory_slots(e)
             for j, (o, u) in enumerate(type(e).MEMORY.items()):
                 if o in used and j < self.mem.shape[-1]:
@@ -287,8 +284,10 @@ class Results:
         ds = self.to_xarray()
         if element is not None:
             k, cls = self._element(element)
-            used = _memory_slots(self.system.elements[k])
-            names = [f"{element}.{o}" for o in cls.OUTPUTS] + [f"{element}.memory.{o}" for o in used]
+            el = self.system.elements[k]
+            names = [
+                f"{element}.{o}" for o in [*output_slots(el), *(f"memory.{m}" for m in _memory_slots(el))]
+            ]
             ds = ds[names].rename({n: n.removeprefix(f"{element}.") for n in names})
         df = ds.to_dataframe()
         df.attrs["units"] = {k: ds[k].attrs["units"] for k in ds.data_vars} | {"time": "s"}

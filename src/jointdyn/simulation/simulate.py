@@ -13,7 +13,7 @@ import numpy as np
 
 from jointdyn.core import interrupts
 from jointdyn.errors import Interrupted, PhysicsWarning, SimulationError
-from jointdyn.forces.elements import FILM_BREAKDOWN, THERMAL_RANGE
+from jointdyn.forces.elements import FILM_BREAKDOWN, JFO_FAILED, THERMAL_RANGE
 from jointdyn.integrators import SOLVERS
 from jointdyn.integrators.accuracy import check_force_resolution
 from jointdyn.integrators.common import (
@@ -52,6 +52,9 @@ between calls, so this bounds the reaction time)"""
 
 
 def _message(system: System, status: int) -> str:
+    if status >= JFO_FAILED:
+        name = system.element_names[status - JFO_FAILED]
+        return f"element {name!r}: the jfo film's active set did not settle on an accepted step [T307]"
     if status >= THERMAL_RANGE:
         name = system.element_names[status - THERMAL_RANGE]
         th = system.elements[status - THERMAL_RANGE].thermal

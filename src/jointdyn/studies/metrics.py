@@ -21,6 +21,7 @@ import math
 import numpy as np
 
 from jointdyn import post
+from jointdyn.forces.elements import output_slots
 from jointdyn.studies.period import angle_drivers
 
 
@@ -44,7 +45,7 @@ def metric_units(system, aliases: dict[str, str] | None = None) -> dict[str, str
     for d in angle_drivers(system):
         units |= {f"{d}.moment_{k}": "N·m" for k in ("peak", "min", "rms")}
     for name, el in zip(system.element_names, system.elements):
-        outs, mem = type(el).OUTPUTS, type(el).MEMORY
+        outs, mem = output_slots(el), type(el).MEMORY
         for o, u in outs.items():
             units |= {f"{name}.{o}_{k}": u for k in ("max", "min", "rms")}
         if "impacts" in mem:
@@ -70,7 +71,7 @@ def metrics(res, aliases: dict[str, str] | None = None) -> dict[str, float]:
         m = post.driving_moment(res, d)[_driver_window(res, d)]
         out |= {f"{d}.moment_{k}": v for k, v in post.stats(m).items()}
     for name, el in zip(res.system.element_names, res.system.elements):
-        outs, mem = type(el).OUTPUTS, type(el).MEMORY
+        outs, mem = output_slots(el), type(el).MEMORY
         for o in outs:
             x = res.element(name, o)
             out |= {f"{name}.{o}_max": float(x.max()), f"{name}.{o}_min": float(x.min())}

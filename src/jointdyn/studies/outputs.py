@@ -20,6 +20,7 @@ import numpy as np
 from jointdyn import post
 from jointdyn.core import atomic, interrupts
 from jointdyn.core.constraints import CONSTRAINTS
+from jointdyn.forces.elements import output_slots
 from jointdyn.studies.metrics import metric_units, metrics
 from jointdyn.studies.period import angle_drivers, journal_elements
 
@@ -50,7 +51,7 @@ def system_columns(res) -> dict[str, np.ndarray]:
             lab = f"lambda.{name}[{r}]"
             cols[header(lab, units[r]) if r < len(units) else lab] = res.lam[:, a + r]
     for name, el in zip(s.element_names, s.elements):
-        for out, unit in type(el).OUTPUTS.items():
+        for out, unit in output_slots(el).items():
             cols[header(f"{name}.{out}", unit)] = res.element(name, out)
     return cols
 

@@ -1,0 +1,222 @@
+"""The transient mass-conserving (jfo) film as part of a journal element [T306–T308].
+
+The cell contents Hθ_f of the film (uniform mesh fixed in the bushing, natural order k = i·nz + j)
+are element memory, after the named slots ``MEMORY``: committed only on accepted steps, with the
+commit time t_n (``film_time``), as the oil temperature [T311]. The right-hand side at time t does
+one backward-Euler step [T300, T304] from the committed contents over Δt = t − t_n to the journal
+position at t; for Δt below ``dt_min`` = ``DT_MIN_TURN``/max(|ω|, 1 rad/s) the step is taken over
+dt_min to the position extrapolated with the journal's velocity in the bushing frame (Δt → 0, the
+start of a step, is then the frozen-content film with its squeeze term, continuous in t) [T306].
+The accepted step commits the contents at t_(n+1) and adds Δt·inflow, Δt·side outflow to the
+volumes in memory, so that content(t) − content(t₀) = inflow volume − side volume to round-off
+[T301, T307]. The mesh's geometry is packed into six consecutive element tables (:func:`pack`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from jointdyn.film.grooved import Grooves
+from jointdyn.film.jfo_step import geometry, jfo_step
+from jointdyn.film.jfo_transient import TransientFilm
+
+#: named memory slots of the jfo film, after the journal element's and the oil temperature's
+MEMORY = {
+    "film_time": "s",
+    "film_content": "m³",
+    "inflow_volume": "m³",
+    "side_volume": "m³",
+    "content_rate": "1/s",
+}
+BASE = 10
+FILM_TIME, CONTENT, IN_VOL, SIDE_VOL, RATE = range(BASE, BASE + len(MEMORY))
+CELLS = BASE + len(MEMORY)  # the cell contents Hθ_f [-] start here
+#: element outputs of the jfo film (name -> unit)
+OUTPUTS = {"film_content": "m³", "inflow": "m³/s", "side_outflow": "m³/s"}
+DT_MIN_TURN = 1e-4  # the shortest backward-Euler step, in radians of relative rotation [T306]
+DCONTENT_STEP = 0.05  # largest change of a cell's content Hθ_f per accepted step [-] [T308]
+MAX_ITER = 200  # active-set iterations of one step
+NTABLES = 6
+
+
+def pack(film, length: float, journal_radius: float, viscosity: float, clearance: float) -> list:
+    """The six (rows, 2) tables of a jfo film [T306]: (nt, nz); (cos, sin) of the cells; of the
+    faces i+1/2; (cv, axial face gaps); (area, supply pressure P_f [1/s] or −1 off the supply);
+    (zig-zag order, its inverse)."""
+    R = journal_radius
+    feed = film.supply_pressure * clearance**2 / (6.0 * viscosity * R * R)  # P_f [1/s] [T300]
+    grooves = Grooves((math.radians(film.supply_angle),), math.radians(film.supply_width), feed)
+    mesh = (int(film.cells_around), int(film.cells_half_length))
+    g = geometry(TransientFilm(length / (2.0 * R), grooves, mesh))
+    return [
+        np.array([[float(g.nt), float(g.nz)]]),
+        np.stack([g.cn, g.sn], axis=1),
+        np.stack([g.cf, g.sf], axis=1),
+        np.stack([g.cv, g.dzf], axis=1),
+        np.stack([g.area, np.where(g.fixed, g.pfix, -1.0)], axis=1),
+        np.stack([g.perm.astype(float), g.inv.astype(float)], axis=1),
+    ]
+
+
+def cells(film) -> int:
+    """Number of cells of a jfo film (memory slots after ``MEMORY``)."""
+    return int(film.cells_around) * int(film.cells_half_length)
+
+
+@njit(cache=True)
+def _unpack(tables, slot):
+    nt = int(tables[slot, 0, 0])
+    nz = int(tables[slot, 0, 1])
+    n = nt * nz
+    cn = tables[slot + 1, :nt, 0].copy()
+    sn = tables[slot + 1, :nt, 1].copy()
+    cf = tables[slot + 2, :nt, 0].copy()
+    sf = tables[slot + 2, :nt, 1].copy()
+    cv = tables[slot + 3, :nz, 0].copy()
+    dzf = tables[slot + 3, :nz, 1].copy()
+    area = tables[slot + 4, :n, 0].copy()
+    pfix = tables[slot + 4, :n, 1].copy()
+    fixed = pfix >= 0.0
+    perm = np.empty(n, np.int64)
+    inv = np.empty(n, np.int64)
+    for k in range(n):
+        perm[k] = int(tables[slot + 5, k, 0])
+        inv[k] = int(tables[slot + 5, k, 1])
+        if not fixed[k]:
+            pfix[k] = 0.0
+    return nt, nz, cn, sn, cf, sf, cv, dzf, area, fixed, pfix, perm, inv
+
+
+@njit(cache=True)
+def _films(ex, ey, nt, nz, cn, sn):
+    H = np.empty(nt * nz)
+    for i in range(nt):
+        h = 1.0 - ex * cn[i] - ey * sn[i]
+        for j in range(nz):
+            H[i * nz + j] = h
+    return H
+
+
+@njit(cache=True)
+def _step(ex, ey, omega, dt, content0, g):
+    nt, nz, cn, sn, cf, sf, cv, dzf, area, fixed, pfix, perm, inv = g
+    H = _films(ex, ey, nt, nz, cn, sn)
+    cav = np.empty(nt * nz, np.bool_)
+    for k in range(nt * nz):  # warm start: cells the committed content does not fill here
+        cav[k] = content0[k] < H[k] * (1.0 - 1e-12) and not fixed[k]
+    P, fill, fx, fy, inflow, side, content, its = jfo_step(
+        ex,
+        ey,
+        omega,
+        dt,
+        content0,
+        cav,
+        nt,
+        nz,
+        cn,
+        sn,
+        cf,
+        sf,
+        cv,
+        dzf,
+        area,
+        fixed,
+        pfix,
+        perm,
+        inv,
+        MAX_ITER,
+    )
+    return H, fill, fx, fy, inflow, side, content, its
+
+
+@njit(cache=True)
+def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
+    """Film force (F_x, F_y) [N] on the journal in the bushing frame, content [m³], inflow and
+    side outflow [m³/s] at time t [s] with the journal at e = (ex, ey) [c] moving at (vx, vy)
+    [c/s] (bushing frame), relative rotation ω [rad/s], viscosity μ [Pa·s], radius R and
+    clearance c [m]; |e| at most ``cap`` [T306]. NaNs if the active set does not settle."""
+    g = _unpack(tables, slot)
+    n = g[0] * g[1]
+    t_n = mem[FILM_TIME]
+    content0 = np.empty(n)
+    if t_n == t_n:
+        for k in range(n):
+            content0[k] = mem[CELLS + k]
+        dt = t - t_n
+    else:  # before the first commit (the run's start): the full film here
+        content0[:] = _films(ex, ey, g[0], g[1], g[2], g[3])
+        dt = 0.0
+    dt_min = DT_MIN_TURN / max(abs(omega), 1.0)
+    if dt < dt_min:  # the frozen-content limit, continuous at Δt = dt_min [T306]
+        ex += vx * (dt_min - dt)
+        ey += vy * (dt_min - dt)
+        dt = dt_min
+    xi = math.sqrt(ex * ex + ey * ey)
+    if xi > cap:
+        ex *= cap / xi
+        ey *= cap / xi
+    H, fill, fx, fy, inflow, side, content, its = _step(ex, ey, omega, dt, content0, g)
+    if its < 0:
+        return math.nan, math.nan, math.nan, math.nan, math.nan
+    sf = mu * R**4 / (c * c)
+    sv = R * R * c
+    return fx * sf, fy * sf, content * sv, inflow * sv, side * sv
+
+
+@njit(cache=True)
+def jfo_commit(t, mem, tables, slot, ex, ey, omega, R, c, cap):
+    """Commit the film of an accepted step at time t [s] with the journal at e = (ex, ey) [c]
+    (bushing frame): the backward-Euler step from the last commit, its contents into memory, the
+    volumes Δt·inflow and Δt·side outflow added [T307]. The first call (film_time NaN) starts the
+    full film. Returns 0, or 1 if the active set does not settle."""
+    g = _unpack(tables, slot)
+    n = g[0] * g[1]
+    xi = math.sqrt(ex * ex + ey * ey)
+    if xi > cap:
+        ex *= cap / xi
+        ey *= cap / xi
+    t_n = mem[FILM_TIME]
+    sv = R * R * c
+    if not (t_n == t_n):
+        H = _films(ex, ey, g[0], g[1], g[2], g[3])
+        total = 0.0
+        for k in range(n):
+            mem[CELLS + k] = H[k]
+            total += 2.0 * g[8][k] * H[k]
+        mem[FILM_TIME] = t
+        mem[CONTENT] = total * sv
+        mem[IN_VOL] = 0.0
+        mem[SIDE_VOL] = 0.0
+        mem[RATE] = 0.0
+        return 0
+    dt = t - t_n
+    if dt <= 0.0:
+        return 0
+    content0 = np.empty(n)
+    for k in range(n):
+        content0[k] = mem[CELLS + k]
+    H, fill, fx, fy, inflow, side, content, its = _step(ex, ey, omega, dt, content0, g)
+    if its < 0:
+        return 1
+    rate = 0.0
+    for k in range(n):
+        new = H[k] * fill[k]
+        rate = max(rate, abs(new - content0[k]) / dt)
+        mem[CELLS + k] = new
+    mem[FILM_TIME] = t
+    mem[CONTENT] = content * sv
+    mem[IN_VOL] += dt * inflow * sv
+    mem[SIDE_VOL] += dt * side * sv
+    mem[RATE] = rate
+    return 0
+
+
+@njit(cache=True)
+def jfo_step_limit(mem):
+    """Largest step [s] over which a cell's content changes by at most ``DCONTENT_STEP`` at the
+    last accepted step's largest rate [T308] (1e300 before the film has a rate)."""
+    r = mem[RATE]
+    return DCONTENT_STEP / r if r > 0.0 else 1e300

@@ -1,0 +1,87 @@
+"""The transient jfo film as a journal element in the multibody loop [T306–T308]: the lubricant
+balance of a dynamically loaded run closes to round-off, the element's outputs reach the results
+with units, and the combinations it does not support are refused in one line."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from jointdyn.film.models import Finite
+from jointdyn.forces.journal import JournalBearing
+from jointdyn.forces.thermal import LumpedOil
+from jointdyn.io.modelfile.load import load_model
+from jointdyn.simulation.simulate import simulate
+from jointdyn.studies.outputs import system_columns
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "slider_crank_jfo.toml"
+
+
+@pytest.fixture(scope="module")
+def run():
+    """0.3 ms of the example (radau5, the lubricated default): the pin leaves the centre, the film
+    ruptures and the supply groove feeds it."""
+    model, cfg = load_model(EXAMPLE)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return simulate(model.compile(), dataclasses.replace(cfg, t_end=3e-4, n_out=31))
+
+
+def test_lubricant_balance_closes_over_a_dynamically_loaded_run(run):
+    """content(t) − content(t₀) = inflow volume − side volume at every sample [T307], to round-off
+    relative to the content (measured 1e-16 … 1e-15); the flows are not trivially zero."""
+    content = run.memory("piston_pin", "film_content")
+    v_in = run.memory("piston_pin", "inflow_volume")
+    v_side = run.memory("piston_pin", "side_volume")
+    started = np.isfinite(run.memory("piston_pin", "film_time"))
+    i0 = int(np.argmax(started))
+    c0 = content[i0] - (v_in[i0] - v_side[i0])  # the content of the first commit (the full film)
+    err = np.abs(content[i0:] - c0 - (v_in[i0:] - v_side[i0:]))
+    assert err.max() <= 1e-10 * c0
+    # oil moved through the ends and the groove (out of it too, while the pin squeezes the film)
+    assert v_side[-1] > 1e-2 * c0 and abs(v_in[-1]) > 1e-2 * c0
+    xi = run.element("piston_pin", "xi")
+    assert xi.max() > 0.1  # the journal left the centre: a dynamically loaded film
+    assert run.stats["accepted_steps"] > 5
+
+
+def test_outputs_with_units_only_for_the_jfo_film(run):
+    cols = system_columns(run)
+    for name in (
+        "piston_pin.film_content [m³]",
+        "piston_pin.inflow [m³/s]",
+        "piston_pin.side_outflow [m³/s]",
+    ):
+        assert name in cols and np.all(np.isfinite(cols[name]))
+    # the instantaneous content of the samples agrees with the committed one to the step's change
+    vol = run.element("piston_pin", "film_content")
+    assert np.allclose(vol[1:], run.memory("piston_pin", "film_content")[1:], rtol=0.05)
+    plain = JournalBearing.example()
+    assert "film_content" not in plain.output_slots() and "film_time" not in plain.memory_slots()
+    assert "film_content" in JournalBearing.example(film=Finite(cavitation="jfo")).output_slots()
+
+
+def test_refusals_name_the_key():
+    with pytest.raises(ValueError, match=r"Finite.cavitation = 'jfo': a mass-conserving film"):
+        Finite(cavitation="jfo").table(0.04, 0.01)
+    with pytest.raises(ValueError, match=r"Finite.supply_width = 400.0 \[deg\]"):
+        Finite(cavitation="jfo", supply_width=400.0)
+    oil = LumpedOil("ISO_VG46", 40.0, 100.0)
+    b = dataclasses.replace(
+        JournalBearing.example(film=Finite(cavitation="jfo")), viscosity=None, thermal=oil
+    )
+    with pytest.raises(ValueError, match=r"JournalBearing.thermal: the transient jfo film"):
+        b.validate()
+
+
+def test_memory_rows_widen_only_with_a_jfo_film():
+    """A system without the film keeps its memory width (its output memory is unchanged)."""
+    model, _ = load_model(EXAMPLE)
+    s = model.compile()
+    assert s.mem0.shape[1] == len(JournalBearing.MEMORY) + 36 * 8
+    assert math.isnan(s.mem0[0, list(JournalBearing.MEMORY).index("film_time")])
