@@ -50,7 +50,7 @@ from jointdyn.forces.journal import (
     XI_GUARD,
     journal_kinematics,
 )
-from jointdyn.forces.journal_pieces import asperity_on, film_viscosity, jfo_on
+from jointdyn.forces.journal_pieces import asperity_on, film_viscosity, jfo_jac, jfo_on
 from jointdyn.forces.kinds import kind_switch
 from jointdyn.forces.simple_jacobians import (
     harmonic_torque_dt,
@@ -76,7 +76,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     ex, ey, edx, edy, six, siy, sjx, sjy, wi, wj = journal_kinematics(q, qd, bi, bj, r)
     c = r[CLR]
     e = np.sqrt(ex * ex + ey * ey)
-    if e == 0.0 or asperity_on(laws, ip[ASPERITY]) or jfo_on(laws, ip[JFO]):  # [T306, T315]: differenced
+    if e == 0.0 or asperity_on(laws, ip[ASPERITY]):  # [T315]: differenced
         return 1
     ux = ex / e
     uy = ey / e
@@ -119,16 +119,54 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
         xi_om = xi_f * (wj + wi) - 2.0 * te / c
         Dxid = (te * tde / e + uded) / c
         DX = Dxi * (wj + wi) + xi_f * Dwsum - 2.0 * (-ue * tde / e + tded) / c
-        fr, ft, frx, fra, fro, ftx, fta, fto = film_jac_dispatch(
-            laws, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
-        )
-        Dfr = frx * Dxi + fra * Dxid + fro * DX
-        Dft = ftx * Dxi + fta * Dxid + fto * DX
-        F[0] = fr * ux + ft * tx
-        F[1] = fr * uy + ft * ty
-        for k in range(12):
-            DF[0, k] = ux * Dfr[k] + fr * Du[0, k] + tx * Dft[k] + ft * Dt[0, k]
-            DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
+        if jfo_on(laws, ip[JFO]):  # the film's block in the bushing frame, chained [T346]
+            Fj, DFj, bad = jfo_jac(
+                laws,
+                mem,
+                tables,
+                ip[JFO],
+                q,
+                bi,
+                ex,
+                ey,
+                edx,
+                edy,
+                wi,
+                wj,
+                mu_f,
+                r[R_J],
+                c,
+                min(xi_cap, XI_GUARD),
+                De,
+                Ded,
+            )
+            if bad != 0:
+                return 1
+            F[:] = Fj
+            DF[:, :] = DFj
+            ft = F[0] * tx + F[1] * ty
+            Dft = tx * DF[0] + ty * DF[1] + F[0] * Dt[0] + F[1] * Dt[1]
+        else:
+            fr, ft, frx, fra, fro, ftx, fta, fto = film_jac_dispatch(
+                laws,
+                ip[FILM],
+                xi_f,
+                xid,
+                xi_om,
+                mu_f,
+                r[R_J],
+                r[LEN],
+                c,
+                r[FILM_P0:FILM_P1],
+                tables[ip[TABLE]],
+            )
+            Dfr = frx * Dxi + fra * Dxid + fro * DX
+            Dft = ftx * Dxi + fta * Dxid + fto * DX
+            F[0] = fr * ux + ft * tx
+            F[1] = fr * uy + ft * ty
+            for k in range(12):
+                DF[0, k] = ux * Dfr[k] + fr * Du[0, k] + tx * Dft[k] + ft * Dt[0, k]
+                DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
         # film force at the journal centre: a_j = s_j, a_i = s_i + e [T8, T15]
         pair_jac(DQ, F, DF, sjx, sjy, Dsj, six + ex, siy + ey, Dsi + De)
         if ip[SHEAR] != 0:

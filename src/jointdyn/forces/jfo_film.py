@@ -1,13 +1,14 @@
-"""The transient mass-conserving (jfo) film as part of a journal element [T306–T308].
+"""The transient mass-conserving (jfo) film as part of a journal element [T306–T308, T345].
 
 The cell contents Hθ_f of the film (uniform mesh fixed in the bushing, natural order k = i·nz + j)
-are element memory, after the named slots ``MEMORY``: committed only on accepted steps, with the
-commit time t_n (``film_time``), as the oil temperature [T311]. The right-hand side at time t does
-one backward-Euler step [T300, T304] from the committed contents over Δt = t − t_n to the journal
-position at t; for Δt below ``dt_min`` = ``DT_MIN_TURN``/max(|ω|, 1 rad/s) the step is taken over
-dt_min to the position extrapolated with the journal's velocity in the bushing frame (Δt → 0, the
-start of a step, is then the frozen-content film with its squeeze term, continuous in t) [T306].
-The accepted step commits the contents at t_(n+1) and adds Δt·inflow, Δt·side outflow to the
+are element memory, after the named slots ``MEMORY``, followed by the journal position e_n of the
+last commit: committed only on accepted steps, with the commit time t_n (``film_time``), as the
+oil temperature [T311]. The right-hand side is the stage-consistent film [T345]: at the journal
+position e the committed fill θ_f = Hθ_f/H(e_n) is frozen (full cells full, cavitated cells keep
+their θ_f), and the squeeze acts on it through one backward-Euler step over the short
+dt_min = ``DT_MIN_TURN``/max(|ω|, 1 rad/s) to e + ė·dt_min, so the force is a function of the
+journal state (e, ė, ω) only, without the stage time. The accepted step commits the contents at
+t_(n+1) by the backward-Euler step over [t_n, t_(n+1)] and adds Δt·inflow, Δt·side outflow to the
 volumes in memory, so that content(t) − content(t₀) = inflow volume − side volume to round-off
 [T301, T307]. The mesh's geometry is packed into six consecutive element tables (:func:`pack`).
 """
@@ -62,8 +63,8 @@ def pack(film, length: float, journal_radius: float, viscosity: float, clearance
 
 
 def cells(film) -> int:
-    """Number of cells of a jfo film (memory slots after ``MEMORY``)."""
-    return int(film.cells_around) * int(film.cells_half_length)
+    """Memory slots of a jfo film after ``MEMORY``: its cells, then the committed position e_n [c]."""
+    return int(film.cells_around) * int(film.cells_half_length) + 2
 
 
 @njit(cache=True)
@@ -133,32 +134,33 @@ def _step(ex, ey, omega, dt, content0, g):
 
 
 @njit(cache=True)
-def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
-    """Film force (F_x, F_y) [N] on the journal in the bushing frame, content [m³], inflow and
-    side outflow [m³/s] at time t [s] with the journal at e = (ex, ey) [c] moving at (vx, vy)
-    [c/s] (bushing frame), relative rotation ω [rad/s], viscosity μ [Pa·s], radius R and
-    clearance c [m]; |e| at most ``cap`` [T306]. NaNs if the active set does not settle."""
-    g = _unpack(tables, slot)
-    n = g[0] * g[1]
-    t_n = mem[FILM_TIME]
-    content0 = np.empty(n)
-    if t_n == t_n:
-        for k in range(n):
-            content0[k] = mem[CELLS + k]
-        dt = t - t_n
-    else:  # before the first commit (the run's start): the full film here
-        content0[:] = _films(ex, ey, g[0], g[1], g[2], g[3])
-        dt = 0.0
-    dt_min = DT_MIN_TURN / max(abs(omega), 1.0)
-    if dt < dt_min:  # the frozen-content limit, continuous at Δt = dt_min [T306]
-        ex += vx * (dt_min - dt)
-        ey += vy * (dt_min - dt)
-        dt = dt_min
+def _capped(ex, ey, cap):
     xi = math.sqrt(ex * ex + ey * ey)
     if xi > cap:
-        ex *= cap / xi
-        ey *= cap / xi
-    H, fill, fx, fy, inflow, side, content, its = _step(ex, ey, omega, dt, content0, g)
+        return ex * cap / xi, ey * cap / xi
+    return ex, ey
+
+
+@njit(cache=True)
+def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
+    """Film force (F_x, F_y) [N] on the journal in the bushing frame, content [m³], inflow and
+    side outflow [m³/s] of the stage-consistent film [T345] with the journal at e = (ex, ey) [c]
+    moving at (vx, vy) [c/s] (bushing frame), relative rotation ω [rad/s], viscosity μ [Pa·s],
+    radius R and clearance c [m]; |e| at most ``cap`` [T306]: the committed fill θ_f frozen at e,
+    its squeeze from ė. Independent of the time t [s]. NaNs if the active set does not settle."""
+    g = _unpack(tables, slot)
+    nt, nz, cn, sn = g[0], g[1], g[2], g[3]
+    n = nt * nz
+    ex, ey = _capped(ex, ey, cap)
+    H = _films(ex, ey, nt, nz, cn, sn)
+    content0 = H.copy()  # before the first commit (the run's start): the full film here
+    if mem[FILM_TIME] == mem[FILM_TIME]:  # the committed fill θ_f = Hθ_f/H(e_n), frozen at e [T345]
+        Hn = _films(mem[CELLS + n], mem[CELLS + n + 1], nt, nz, cn, sn)
+        for k in range(n):
+            content0[k] = H[k] * (mem[CELLS + k] / Hn[k])
+    dt = DT_MIN_TURN / max(abs(omega), 1.0)
+    ex1, ey1 = _capped(ex + vx * dt, ey + vy * dt, cap)
+    H1, fill, fx, fy, inflow, side, content, its = _step(ex1, ey1, omega, dt, content0, g)
     if its < 0:
         return math.nan, math.nan, math.nan, math.nan, math.nan
     sf = mu * R**4 / (c * c)
@@ -174,10 +176,7 @@ def jfo_commit(t, mem, tables, slot, ex, ey, omega, R, c, cap):
     full film. Returns 0, or 1 if the active set does not settle."""
     g = _unpack(tables, slot)
     n = g[0] * g[1]
-    xi = math.sqrt(ex * ex + ey * ey)
-    if xi > cap:
-        ex *= cap / xi
-        ey *= cap / xi
+    ex, ey = _capped(ex, ey, cap)
     t_n = mem[FILM_TIME]
     sv = R * R * c
     if not (t_n == t_n):
@@ -187,6 +186,8 @@ def jfo_commit(t, mem, tables, slot, ex, ey, omega, R, c, cap):
             mem[CELLS + k] = H[k]
             total += 2.0 * g[8][k] * H[k]
         mem[FILM_TIME] = t
+        mem[CELLS + n] = ex
+        mem[CELLS + n + 1] = ey
         mem[CONTENT] = total * sv
         mem[IN_VOL] = 0.0
         mem[SIDE_VOL] = 0.0
@@ -207,6 +208,8 @@ def jfo_commit(t, mem, tables, slot, ex, ey, omega, R, c, cap):
         rate = max(rate, abs(new - content0[k]) / dt)
         mem[CELLS + k] = new
     mem[FILM_TIME] = t
+    mem[CELLS + n] = ex
+    mem[CELLS + n + 1] = ey
     mem[CONTENT] = content * sv
     mem[IN_VOL] += dt * inflow * sv
     mem[SIDE_VOL] += dt * side * sv
@@ -220,3 +223,32 @@ def jfo_step_limit(mem):
     last accepted step's largest rate [T308] (1e300 before the film has a rate)."""
     r = mem[RATE]
     return DCONTENT_STEP / r if r > 0.0 else 1e300
+
+
+@njit(cache=True)
+def jfo_jacobian(mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
+    """Film force (F_x, F_y) [N] of :func:`jfo_force` in the bushing frame and its derivatives
+    (2, 5) by (e_x, e_y [c], v_x, v_y [c/s], ω [rad/s]) by central differences [T346]: ten film
+    steps. The last value is 1 where a step's active set does not settle, else 0."""
+    x = np.array([ex, ey, vx, vy, omega])
+    fx, fy, _, _, _ = jfo_force(0.0, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap)
+    J = np.empty((2, 5))
+    xi = math.sqrt(ex * ex + ey * ey)
+    speed = math.sqrt(vx * vx + vy * vy)
+    for k in range(5):
+        scale = max(xi, 1e-3) if k < 2 else (max(speed, 1.0) if k < 4 else max(abs(omega), 1.0))
+        h = 6.055454452393343e-06 * scale  # ε^(1/3) [T100]
+        xp = x.copy()
+        xm = x.copy()
+        xp[k] += h
+        xm[k] -= h
+        fpx, fpy, _, _, _ = jfo_force(
+            0.0, mem, tables, slot, xp[0], xp[1], xp[2], xp[3], xp[4], mu, R, c, cap
+        )
+        fmx, fmy, _, _, _ = jfo_force(
+            0.0, mem, tables, slot, xm[0], xm[1], xm[2], xm[3], xm[4], mu, R, c, cap
+        )
+        J[0, k] = (fpx - fmx) / (2.0 * h)
+        J[1, k] = (fpy - fmy) / (2.0 * h)
+    bad = 0 if (fx == fx and np.all(J == J)) else 1
+    return fx, fy, J, bad

@@ -14,10 +14,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 from numba import njit
 
 from jointdyn.core.dispatch import law_gate
-from jointdyn.forces.jfo_film import jfo_commit, jfo_force, jfo_step_limit
+from jointdyn.forces.jfo_film import jfo_commit, jfo_force, jfo_jacobian, jfo_step_limit
 from jointdyn.forces.mixed import asperity_loads
 from jointdyn.forces.thermal import VISC, thermal_step_limit
 
@@ -142,3 +143,65 @@ jfo_limit = law_gate("jfo_limit", JFO_PIECE, jfo_step_limit, ("mem",), "1e300")
 
 jfo_on = law_gate("jfo_on", JFO_PIECE, _nonzero, ("slot",), "False")
 """whether the element's jfo slot is set"""
+
+
+@njit(inline="always")
+def _jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded):
+    """Global film force F (2,) [N] on the journal and ∂F/∂z (2, 12) for z = (q_i, q_j, q̇_i, q̇_j)
+    from ∂e/∂z, ∂ė/∂z (De, Ded): the film's derivatives in the bushing frame (``jfo_jacobian``)
+    chained through e_b = Aᵀe/c, ė_b = Aᵀė/c − ω_i S e_b, ω = ω_J − ω_B and F = A F_b [T346]."""
+    co, si, ebx, eby, vbx, vby = bushing_frame(q, bi, ex, ey, edx, edy, wi, c)
+    fbx, fby, J, bad = jfo_jacobian(mem, tables, slot, ebx, eby, vbx, vby, wj - wi, mu, R, c, cap)
+    Dx = np.zeros((5, 12))  # ∂(e_b, ė_b, ω)/∂z
+    for k in range(12):
+        Dx[0, k] = (co * De[0, k] + si * De[1, k]) / c
+        Dx[1, k] = (-si * De[0, k] + co * De[1, k]) / c
+        Dx[2, k] = (co * Ded[0, k] + si * Ded[1, k]) / c + wi * Dx[1, k]
+        Dx[3, k] = (-si * Ded[0, k] + co * Ded[1, k]) / c - wi * Dx[0, k]
+    if bi >= 0:  # the bushing's angle φ_i (z[2]) and rate ω_i (z[8]) in A and in ė_b
+        Dx[0, 2] += eby
+        Dx[1, 2] -= ebx
+        Dx[2, 2] += vby
+        Dx[3, 2] -= vbx
+        Dx[2, 8] += eby
+        Dx[3, 8] -= ebx
+    Dx[4, 8] -= 1.0
+    Dx[4, 11] += 1.0
+    DFb = J @ Dx
+    F = np.array([co * fbx - si * fby, si * fbx + co * fby])
+    DF = np.empty((2, 12))
+    for k in range(12):
+        DF[0, k] = co * DFb[0, k] - si * DFb[1, k]
+        DF[1, k] = si * DFb[0, k] + co * DFb[1, k]
+    if bi >= 0:
+        DF[0, 2] -= F[1]
+        DF[1, 2] += F[0]
+    return F, DF, bad
+
+
+jfo_jac = law_gate(
+    "jfo_jac",
+    JFO_PIECE,
+    _jfo_jac,
+    (
+        "mem",
+        "tables",
+        "slot",
+        "q",
+        "bi",
+        "ex",
+        "ey",
+        "edx",
+        "edy",
+        "wi",
+        "wj",
+        "mu",
+        "R",
+        "c",
+        "cap",
+        "De",
+        "Ded",
+    ),
+    "(De[:, 0] * 0.0, De * 0.0, 1)",
+)
+"""(F (2,) [N], ∂F/∂z (2, 12), 1 if unsettled else 0) of the transient jfo film [T346]"""
