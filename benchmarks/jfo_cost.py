@@ -18,7 +18,7 @@ Prints, in CPU seconds (``time.process_time``, warm: kernels compiled, table cac
   itself and any extra steps the content limit forces are not in it;
 * the mesh error: max over the path of |F(mesh) − F(reference)| / |F(reference)|.
 
-``--end-to-end`` measures instead the built element [T306]: one revolution of the same
+``--end-to-end`` measures instead the built element [T306, T345–T347]: one revolution of the same
 slider-crank with ``film = Finite(cavitation="jfo")`` (``examples/slider_crank_jfo.toml``, same
 configuration as the ``finite`` run) in CPU seconds, its ratio to the ``finite`` run, its counts,
 and the error of its film force against the same run on a refined mesh over the first
