@@ -33,7 +33,10 @@ ELEMENT = "big_end"
 LAWS = ("gumbel", "reynolds")
 CYCLE = 0.04  # one four-stroke cycle at 3000 rpm: 720° [s]
 N_OUT = 2 * 360 + 1  # 2° of crank angle per sample over warm-up + recorded cycle
-RTOL, ATOL = 1e-7, 1e-11  # the example's tolerances
+# solver, rtol, atol: the example's for the table films; the jfo film needs rtol 1e-9 (at 1e-7
+# the check of [T111] finds its force unresolved) and radau5 (rodas4's steps collapse at the start)
+TABLE_RUN = ("rodas4", 1e-7, 1e-11)
+SOLVER = {"gumbel": TABLE_RUN, "reynolds": TABLE_RUN, "jfo": ("radau5", 1e-9, 1e-12)}
 # jfo film of the big end: one axial supply groove in the rod eye at 90° from the rod axis, fed at
 # 2 bar; mesh 24 × 4 cells (coarse: the run must stay a few minutes of CPU)
 SUPPLY = {"supply_angle": 90.0, "supply_width": 20.0, "supply_pressure": 2.0e5}
@@ -55,8 +58,9 @@ def run(law: str):
         f"elements.{ELEMENT}.film={film_key(law)}",
         f"simulation.t_end={2.0 * CYCLE!r}",
         f"simulation.n_out={N_OUT}",
-        f"simulation.rtol={RTOL!r}",
-        f"simulation.atol={ATOL!r}",
+        f"simulation.solver={SOLVER[law][0]}",
+        f"simulation.rtol={SOLVER[law][1]!r}",
+        f"simulation.atol={SOLVER[law][2]!r}",
     ]
     t0 = time.process_time()
     _, system, cfg = load_system(EXAMPLE, keys)
