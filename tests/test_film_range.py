@@ -30,6 +30,16 @@ def test_exit_found_with_time_and_xi():
     assert "t = 0.4 s" in range_message(d) and "xi_max = 0.990000" in range_message(d)
 
 
+def test_no_table_range_for_the_transient_jfo_film():
+    """The jfo film has no table (its mesh is solved at every step [T306]): the run of
+    examples/slider_crank_jfo.toml warned "finite film beyond its table … extrapolated"."""
+    from jointdyn.film.models import Finite
+
+    xi = np.array([0.5, 0.96, 0.99])
+    assert film_range_exits(_fake(Finite(cavitation="jfo"), xi)) == []
+    assert len(film_range_exits(_fake(Finite(cavitation="reynolds"), xi))) == 1
+
+
 def test_no_report_inside_the_range_or_for_closed_forms():
     assert film_range_exits(_fake("finite", np.array([0.2, 0.95, 0.3]))) == []
     assert film_range_exits(_fake("alshaer2005", np.array([0.2, 0.99]))) == []  # closed form

@@ -27,8 +27,8 @@ def film_range_exits(res) -> list[dict]:
             fm = film_model(film)
         except (ValueError, TypeError):
             continue
-        if not isinstance(fm, Finite):
-            continue
+        if not isinstance(fm, Finite) or fm.transient:
+            continue  # only the tabulated films have a table range (jfo solves its mesh each step)
         xi = res.element(name, "xi")
         beyond = xi > XI_MAX
         if beyond.any():
