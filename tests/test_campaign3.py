@@ -134,6 +134,16 @@ def test_a_listed_file_replaced_by_a_link_is_named_as_a_link(run_dir, tmp_path):
     assert json.loads(before)["status"] == "complete"
 
 
+def _states(tmp_path: Path) -> Path:
+    """A one-row film-force input file."""
+    states = tmp_path / "states.csv"
+    states.write_text(
+        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
+        "0.5,0,0,0,500,0,0.01,0.04,0.01,5e-5\n"
+    )
+    return states
+
+
 def test_single_file_writers_join_a_run_directory_manifest(run_dir, tmp_path):
     """bearing-table, stribeck and film-force --out into a run directory wrote there without its
     lock and outside its manifest (a later --overwrite kept them as foreign files) [T338]."""
@@ -142,11 +152,7 @@ def test_single_file_writers_join_a_run_directory_manifest(run_dir, tmp_path):
 
     d = tmp_path / "r"
     shutil.copytree(run_dir, d)
-    states = tmp_path / "states.csv"
-    states.write_text(
-        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
-        "0.5,0,0,0,500,0,0.01,0.04,0.01,5e-5\n"
-    )
+    states = _states(tmp_path)
     strib = ["stribeck", "--radius", "0.02", "--length", "0.02", "--clearance", "2e-5", "--viscosity", "0.05"]
     for argv in (
         ["bearing-table", "--ld", "1", "--eps", "0.5", "--out", str(d / "bt.csv")],
@@ -175,11 +181,7 @@ def test_a_derived_output_never_replaces_the_directory_own_files(run_dir, tmp_pa
 
     d = tmp_path / "r"
     shutil.copytree(run_dir, d)
-    states = tmp_path / "states.csv"
-    states.write_text(
-        "xi,xi_dot,gamma,gamma_dot,omega_journal,omega_bearing,viscosity,length,radius,clearance\n"
-        "0.5,0,0,0,500,0,0.01,0.04,0.01,5e-5\n"
-    )
+    states = _states(tmp_path)
     before = {p.name: hashlib.sha256(p.read_bytes()).hexdigest() for p in d.iterdir()}
     manifest = json.loads((d / "manifest.json").read_text())
     for name in manifest["files"]:
