@@ -29,7 +29,7 @@ def _load_at(eps: float, cavitation: str) -> float:
 @pytest.mark.parametrize("cavitation", ["reynolds", "jfo"])
 def test_the_operating_point_inverts_the_table_and_balances_the_load(cavitation):
     W = _load_at(0.6, cavitation)
-    op = grooved_equilibrium(W, N, R, LENGTH, C, MU, cavitation, 2, 18.0)
+    op = grooved_equilibrium(W, N, R, LENGTH, C, MU, cavitation, axial_grooves(2, 18.0))
     assert op["eps"] == pytest.approx(0.6, abs=1e-8)
     assert op["h_min"] == pytest.approx(C * 0.4, rel=1e-7)
     # force balance in newtons at the solution, from the film solver (F in μωR⁴/c² [T246])
@@ -48,16 +48,16 @@ def test_the_operating_point_inverts_the_table_and_balances_the_load(cavitation)
 
 def test_a_supply_pressure_adds_flow_and_bad_input_is_named():
     W = _load_at(0.6, "jfo")
-    base = grooved_equilibrium(W, N, R, LENGTH, C, MU, "jfo", 2, 18.0)
-    fed = grooved_equilibrium(W, N, R, LENGTH, C, MU, "jfo", 2, 18.0, feed_pressure=2e5)
+    base = grooved_equilibrium(W, N, R, LENGTH, C, MU, "jfo", axial_grooves(2, 18.0))
+    fed = grooved_equilibrium(W, N, R, LENGTH, C, MU, "jfo", axial_grooves(2, 18.0), feed_pressure=2e5)
     assert fed["flow"] > 1.5 * base["flow"]
     assert fed["side_flow"] == pytest.approx(fed["flow"], rel=1e-9)
     with pytest.raises(ValueError, match=r"cannot carry it below eps = 0.99"):
-        grooved_equilibrium(1e3 * W, N, R, LENGTH, C, MU, "jfo", 2, 18.0)
+        grooved_equilibrium(1e3 * W, N, R, LENGTH, C, MU, "jfo", axial_grooves(2, 18.0))
     with pytest.raises(ValueError, match=r"clearance = 0.03 \[m\]: must be < radius"):
-        grooved_equilibrium(W, N, R, LENGTH, 0.03, MU, "jfo", 2, 18.0)
+        grooved_equilibrium(W, N, R, LENGTH, 0.03, MU, "jfo", axial_grooves(2, 18.0))
     with pytest.raises(ValueError, match=r"feed_pressure = -1.0 \[Pa\]"):
-        grooved_equilibrium(W, N, R, LENGTH, C, MU, "jfo", 2, 18.0, feed_pressure=-1.0)
+        grooved_equilibrium(W, N, R, LENGTH, C, MU, "jfo", axial_grooves(2, 18.0), feed_pressure=-1.0)
 
 
 def test_bearing_table_prints_the_grooved_operating_point():

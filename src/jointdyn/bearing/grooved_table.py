@@ -13,7 +13,7 @@ from jointdyn.core.checks import check
 from jointdyn.film import grooved
 from jointdyn.film.coefficients import stability_threshold
 from jointdyn.film.field import peak_of, rupture_of
-from jointdyn.film.grooved import GROOVED_MESH, Grooves, equilibrium
+from jointdyn.film.grooved import GROOVED_MESH, equilibrium
 from jointdyn.film.jfo import flows
 
 EPS_MAX = 0.99  # the largest ε of the grooved operating point [T342]
@@ -34,13 +34,14 @@ def numeric_coefficients(cavitation: str, ld: float, eps, supply, mesh=GROOVED_M
 
 
 def grooved_table(
-    cavitation: str, ld: float, eps, grooves: Grooves, mesh=GROOVED_MESH, coefficients: bool = True
+    cavitation: str, ld: float, eps, grooves, mesh=GROOVED_MESH, coefficients: bool = True
 ) -> dict:
     """Steady table of the grooved bearing with the load direction fixed (grooves fixed relative
     to the load) per ε [T244–T247]: ``sommerfeld``, ``attitude_deg``, ``friction_variable``
     (Couette shear of the full clearance, as Raimondi–Boyd), ``flow_variable`` Q/(RcNL) of the
     total supply, ``side_flow_ratio``, ``pressure_ratio``, ``theta_pmax_deg``, ``theta_end_deg``,
-    ``groove_flow_<k>`` the flow variable of groove k (k = 1 at +90° from the load), ``fill_min``
+    ``groove_flow_<k>`` the flow variable of groove k (k = 1 at +90° from the load; ``hole_flow_<k>``,
+    ``circumferential_flow_1`` for the other supply features of [T366]), ``fill_min``
     (smallest fill fraction: 1 for films that are not mass conserving), ``residual`` and the
     dynamic coefficients (central differences)."""
     rows = []
@@ -55,8 +56,9 @@ def grooved_table(
         th = prob.film_theta
         P2 = sol.P.reshape(nt, nz)
         Ft = -W * math.sin(phi)  # the film force −W·(load direction) on t = (−sin φ, cos φ)
-        pmax, thp = peak_of(th, P2[:, 0])
-        the = rupture_of(th, P2[:, 0], cavitation)
+        j = int(np.argmax(P2.max(axis=0)))  # the row of the peak: mid-plane, or a land's [T366]
+        pmax, thp = peak_of(th, P2[:, j])
+        the = rupture_of(th, P2[:, j], cavitation)
         r = {
             "eps": x,
             "ld": ld,
@@ -72,7 +74,7 @@ def grooved_table(
             "residual": sol.residual,
         }
         for k, q in enumerate(fl["per_groove"]):
-            r[f"groove_flow_{k + 1}"] = math.pi * q / (2.0 * ld)
+            r[f"{grooves.flow_name}_{k + 1}"] = math.pi * q / (2.0 * ld)
         rows.append(r)
     out = {c: np.array([r[c] for r in rows]) for c in rows[0]}
     if coefficients:
@@ -88,8 +90,7 @@ def grooved_equilibrium(
     clearance: float,
     viscosity: float,
     cavitation: str,
-    grooves: int,
-    width_deg: float,
+    supply,
     feed_pressure: float = 0.0,
     mesh=GROOVED_MESH,
 ) -> dict:
@@ -99,13 +100,15 @@ def grooved_equilibrium(
     [T245].
 
     load, speed, radius, length, clearance, viscosity  W [N], N [rev/s], R, L, c [m], μ [Pa·s], > 0
-    grooves, width_deg, feed_pressure                   as :func:`jointdyn.film.grooved.axial_grooves`
-                                                        (feed_pressure p_f [Pa], gauge, ≥ 0)
+    supply        the supply feature (:class:`~jointdyn.film.grooved.Grooves`, ``FeedHoles`` or
+                  ``CircumferentialGroove``); its ``feed`` is replaced by feed_pressure's [T366]
+    feed_pressure p_f [Pa], gauge, ≥ 0
     Returns the keys of :func:`jointdyn.bearing.design.equilibrium` (``flow`` the total supply
-    [m³/s]) plus ``groove_flow_<k>`` [m³/s] (k = 1 at +90° from the load) and ``fill_min`` [-]."""
-    from scipy.optimize import brentq
+    [m³/s]) plus the flow per feature ``<kind>_flow_<k>`` [m³/s] (k = 1 at +90° from the load)
+    and ``fill_min`` [-]."""
+    import dataclasses
 
-    from jointdyn.film.grooved import axial_grooves
+    from scipy.optimize import brentq
 
     for name, v, unit in (
         ("load", load, "N"),
@@ -122,7 +125,7 @@ def grooved_equilibrium(
         raise ValueError(f"feed_pressure = {feed_pressure!r} [Pa]: must be finite and >= 0 (gauge)")
     omega = 2.0 * math.pi * speed
     feed = feed_pressure * clearance**2 / (6.0 * viscosity * omega * radius**2)  # P_f [T245]
-    supply = axial_grooves(grooves, width_deg, feed)
+    supply = dataclasses.replace(supply, feed=feed)
     ld = length / (2.0 * radius)
     S_given = (radius / clearance) ** 2 * viscosity * speed / (load / (2.0 * radius * length))
 
@@ -151,5 +154,5 @@ def grooved_equilibrium(
     out = dimensional_point(r, eps, load, speed, radius, length, clearance, S_given)
     out["fill_min"] = r["fill_min"]
     q = radius * clearance * speed * length  # flow variable Q/(R c N L) [T77]
-    out.update({k: v * q for k, v in r.items() if k.startswith("groove_flow_")})
+    out.update({k: v * q for k, v in r.items() if k.startswith(supply.flow_name + "_")})
     return out

@@ -14,6 +14,7 @@ import typer
 from jointdyn.cli.common import _one_line_errors, app
 
 MAX_VALUES = 10_000  # eccentricity ratios in one table [-]
+FLOW_SUFFIXES = tuple(f"_flow_{k}" for k in range(1, 100))  # per supply feature [m³/s]
 
 
 def _floats(text: str, name: str) -> list[float]:
@@ -36,14 +37,31 @@ def _floats(text: str, name: str) -> list[float]:
         ) from None
 
 
-def _grooves(n, width_deg, feed_pa, extra):
-    """The :class:`Grooves` of the options (None without --grooves) [T244–T245]."""
-    if n is None:
-        if feed_pa != 0.0:
-            raise ValueError("--feed-pressure needs --grooves")
-        return None
-    from jointdyn.film.grooved import axial_grooves
+def _supply(grooves, groove_width, holes, hole_diameter, circumferential, feed_pa, ld, extra):
+    """The supply feature of the options, its feed pressure made dimensionless [T245], or None
+    (the plain bearing) [T244, T366]."""
+    from jointdyn.film.grooved import CircumferentialGroove, axial_grooves, feed_holes
 
+    given = [
+        o
+        for o, v in (
+            ("--grooves", grooves),
+            ("--feed-holes", holes),
+            ("--circumferential-groove", circumferential),
+        )
+        if v is not None
+    ]
+    if len(given) > 1:
+        raise ValueError(
+            f"{' and '.join(given)}: give one supply feature (axial grooves, feed holes or a "
+            "circumferential groove)"
+        )
+    if holes is None and hole_diameter is not None:
+        raise ValueError("--hole-diameter needs --feed-holes")
+    if not given:
+        if feed_pa != 0.0:
+            raise ValueError("--feed-pressure needs --grooves, --feed-holes or --circumferential-groove")
+        return None
     if not (math.isfinite(feed_pa) and feed_pa >= 0.0):
         raise ValueError(f"--feed-pressure {feed_pa!r} [Pa]: must be finite and >= 0 (gauge)")
     feed = 0.0
@@ -53,7 +71,17 @@ def _grooves(n, width_deg, feed_pa, extra):
         speed, radius, clearance, viscosity = extra
         omega = 2.0 * math.pi * speed
         feed = feed_pa * clearance**2 / (6.0 * viscosity * omega * radius**2)  # P_f [T245]
-    return axial_grooves(n, width_deg, feed)
+    if grooves is not None:
+        return axial_grooves(grooves, groove_width, feed)
+    lr = 2.0 * ld  # L/R
+    for name, v in (("--hole-diameter", hole_diameter), ("--circumferential-groove", circumferential)):
+        if v is not None and not (math.isfinite(v) and 0.0 < v < 1.0):
+            raise ValueError(f"{name} {v!r} [-, fraction of the bearing length L]: must be in (0, 1)")
+    if holes is not None:
+        if hole_diameter is None:
+            raise ValueError("--feed-holes needs --hole-diameter (fraction of the bearing length L)")
+        return feed_holes(holes, hole_diameter * lr, feed)
+    return CircumferentialGroove(circumferential * lr, feed)
 
 
 def bearing_table_cmd(
@@ -75,8 +103,17 @@ def bearing_table_cmd(
         None, help="axial supply grooves, evenly spaced from +90° off the load line (2: at ±90°)"
     ),
     groove_width: float = typer.Option(18.0, help="angular width of each groove in degrees"),
+    feed_holes: int = typer.Option(
+        None, help="round feed holes at mid-length, evenly spaced from +90° off the load line"
+    ),
+    hole_diameter: float = typer.Option(
+        None, help="feed-hole diameter as a fraction of the bearing length L"
+    ),
+    circumferential_groove: float = typer.Option(
+        None, help="a groove all around at mid-length: its width as a fraction of the bearing length L"
+    ),
     feed_pressure: float = typer.Option(
-        0.0, help="groove supply pressure in Pa (gauge; > 0 needs --speed --radius --clearance --viscosity)"
+        0.0, help="supply pressure in Pa (gauge; > 0 needs --speed --radius --clearance --viscosity)"
     ),
     oil: str = typer.Option(
         None, help="oil grade (ISO_VG22…ISO_VG220, SAE_10…SAE_60): effective temperature"
@@ -95,7 +132,16 @@ def bearing_table_cmd(
     # Ctrl-C/SIGTERM as a flag, checked per ε: one line, exit 130/143, never a traceback [T332]
     with _one_line_errors():
         eps_list = _floats(eps, "eps")
-        supply = _grooves(grooves, groove_width, feed_pressure, (speed, radius, clearance, viscosity))
+        supply = _supply(
+            grooves,
+            groove_width,
+            feed_holes,
+            hole_diameter,
+            circumferential_groove,
+            feed_pressure,
+            ld,
+            (speed, radius, clearance, viscosity),
+        )
         tab = bearing_table(model, cavitation, ld, eps_list, grooves=supply)
         op = None
         extra = (speed, radius, clearance)
@@ -122,7 +168,7 @@ def bearing_table_cmd(
         elif supply is not None and load is not None:  # the grooved operating point [T342]
             if any(v is None for v in (*extra, viscosity)) or oil is not None:
                 raise ValueError(
-                    "--load with --grooves needs --speed, --radius, --clearance and --viscosity (SI)"
+                    "--load with a supply feature needs --speed, --radius, --clearance and --viscosity (SI)"
                 )
             from jointdyn.bearing.design import _check_model
             from jointdyn.bearing.grooved_table import grooved_equilibrium
@@ -136,8 +182,7 @@ def bearing_table_cmd(
                 clearance,
                 viscosity,
                 cav,
-                grooves,
-                groove_width,
+                supply,
                 feed_pressure,
             )
         interrupts.check()  # a signal during the operating point: nothing is written
@@ -183,7 +228,7 @@ def bearing_table_cmd(
         console.print("operating point:")
         for k, v in op.items():
             if isinstance(v, float) and math.isfinite(v):
-                unit = "m³/s" if k.startswith("groove_flow_") else units[k]
+                unit = "m³/s" if k.endswith(FLOW_SUFFIXES) else units[k]
                 if k == "theta_end_deg" and gumbel:
                     console.print(
                         f"  {k} = {v:.6g} " + escape(f"[{unit}]") + " (by construction: the gumbel film"

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -36,9 +37,18 @@ class Grooves:
     centres: tuple[float, ...]
     width: float
     feed: float = 0.0
+    flow_name: ClassVar[str] = "groove_flow"
 
     def __post_init__(self):
         check_grooves(self.centres, self.width, self.feed)
+
+    def labels(self, theta: np.ndarray, zeta: np.ndarray) -> np.ndarray:
+        """Groove number of every unknown (N,) (−1 elsewhere): :func:`groove_labels`."""
+        return groove_labels(theta, zeta.size - 1, self)
+
+    @property
+    def count(self) -> int:
+        return len(self.centres)
 
 
 def check_grooves(centres, width, feed) -> None:
@@ -73,9 +83,20 @@ def axial_grooves(n: int, width_deg: float, feed: float = 0.0) -> Grooves:
     two-axial-groove bearing (grooves at ±90° from the load line) [T244]."""
     if not (isinstance(n, int) and n >= 1):
         raise ValueError(f"grooves = {n!r}: number of axial grooves must be an integer >= 1")
-    w = math.radians(width_deg)
-    centres = tuple((0.5 * math.pi + 2.0 * math.pi * k / n) % (2.0 * math.pi) for k in range(n))
-    return Grooves(centres, w, feed)
+    return Grooves(_spaced(n), math.radians(width_deg), feed)
+
+
+def feed_holes(n: int, diameter: float, feed: float = 0.0) -> FeedHoles:
+    """n feed holes of diameter d/R [-] at mid-length, evenly spaced from +90° off the load line
+    (as :func:`axial_grooves`) [T366]."""
+    if not (isinstance(n, int) and n >= 1):
+        raise ValueError(f"feed holes = {n!r}: number of feed holes must be an integer >= 1")
+    return FeedHoles(_spaced(n), diameter, feed)
+
+
+def _spaced(n: int) -> tuple[float, ...]:
+    """n angles evenly spaced from +90° off the load line [rad]."""
+    return tuple((0.5 * math.pi + 2.0 * math.pi * k / n) % (2.0 * math.pi) for k in range(n))
 
 
 def groove_labels(theta: np.ndarray, nz: int, g: Grooves) -> np.ndarray:
@@ -92,10 +113,98 @@ def groove_labels(theta: np.ndarray, nz: int, g: Grooves) -> np.ndarray:
     return np.repeat(lab, nz)
 
 
+@dataclass(frozen=True)
+class FeedHoles:
+    """Round feed holes centred at mid-length [T366].
+
+    centres   hole centre angles (n,) [rad], frame as :class:`Grooves`
+    diameter  hole diameter over the journal radius d/R [-] (the arc it spans at its centre line)
+    feed      supply pressure (unit as :class:`Grooves`) [-], ≥ 0 gauge
+    """
+
+    centres: tuple[float, ...]
+    diameter: float
+    feed: float = 0.0
+    flow_name: ClassVar[str] = "hole_flow"
+
+    def __post_init__(self):
+        try:
+            check_grooves(self.centres, self.diameter, self.feed)
+        except ValueError as err:  # same bounds, named for a hole
+            msg = str(err).replace("groove width", "hole diameter/R (arc)").replace("groove", "hole")
+            raise ValueError(msg) from None
+
+    def labels(self, theta: np.ndarray, zeta: np.ndarray) -> np.ndarray:
+        """Hole number of every unknown (N,) (−1 elsewhere): the nodes within d/2 of a hole centre
+        on the unrolled surface, (Δθ)² + ζ² ≤ (d/2R)² [T366]."""
+        lam = float(zeta[-1])
+        if not self.diameter < 2.0 * lam:
+            raise ValueError(
+                f"feed hole diameter/R = {self.diameter:.6g} [-]: must be < L/R = {2.0 * lam:.6g} "
+                "(the hole lies inside the bearing length)"
+            )
+        ds = 2.0 * math.pi / theta.size
+        if self.diameter < ds:
+            raise ValueError(
+                f"feed hole diameter/R = {self.diameter:.6g} [-]: narrower than one mesh cell ({ds:.4g}); "
+                "give a larger hole or a finer mesh"
+            )
+        z = zeta[:-1]
+        lab = np.full((theta.size, z.size), -1)
+        r2 = (0.5 * self.diameter) ** 2 * (1.0 + 1e-9)
+        for k, c in enumerate(self.centres):
+            d = np.mod(theta - c + math.pi, 2.0 * math.pi) - math.pi
+            lab[(d[:, None] ** 2 + z[None, :] ** 2) <= r2] = k
+        for k in range(len(self.centres)):
+            if not np.any(lab == k):
+                raise ValueError(
+                    f"feed hole diameter/R = {self.diameter:.6g} [-]: hole {k + 1} holds no mesh node; "
+                    "give a larger hole or a finer mesh"
+                )
+        return lab.ravel()
+
+    @property
+    def count(self) -> int:
+        return len(self.centres)
+
+
+@dataclass(frozen=True)
+class CircumferentialGroove:
+    """A supply groove all around the bearing at mid-length [T366]: it splits the film into two
+    lands, each a bearing of length (L − w)/2 fed over its whole inner edge.
+
+    width  axial width of the groove over the journal radius w/R [-], 0 < w < L
+    feed   supply pressure (unit as :class:`Grooves`) [-], ≥ 0 gauge
+    """
+
+    width: float
+    feed: float = 0.0
+    flow_name: ClassVar[str] = "circumferential_flow"
+    count: ClassVar[int] = 1
+
+    def __post_init__(self):
+        if not (math.isfinite(self.width) and self.width > 0.0):
+            raise ValueError(f"circumferential groove width/R = {self.width!r} [-]: must be finite and > 0")
+        if not (math.isfinite(self.feed) and self.feed >= 0.0):
+            raise ValueError(f"feed pressure = {self.feed!r} [-, or Pa]: must be finite and >= 0 (gauge)")
+
+    def labels(self, theta: np.ndarray, zeta: np.ndarray) -> np.ndarray:
+        """0 for the nodes with ζ < w/2R (all around), −1 elsewhere (N,) [T366]."""
+        lam = float(zeta[-1])
+        if not self.width < 2.0 * lam:
+            raise ValueError(
+                f"circumferential groove width/R = {self.width:.6g} [-]: must be < L/R = {2.0 * lam:.6g}"
+            )
+        row = np.where(zeta[:-1] < 0.5 * self.width - 1e-12, 0, -1)
+        row[0] = 0  # the mid-plane row lies in any groove
+        return np.tile(row, theta.size)
+
+
 def film_at(ld, e, edot, cavitation, supply, mesh=GROOVED_MESH, warm=None):
     """Solve the film with the journal at e = (e_L, e_P) [c] moving at ė [cω] (load frame) [T246].
 
-    supply   a :class:`Grooves`, ("line", α) for a feed line (one node row at P = 0) at the
+    supply   a :class:`Grooves`, :class:`FeedHoles`, :class:`CircumferentialGroove` [T366],
+             ("line", α) for a feed line (one node row at P = 0) at the
              mesh angle α [rad] (the plain bearing's supply at its equilibrium maximum film), or
              None (periodic film without supply)
     Returns (F (2,) film force on the journal in the load frame [μωR⁴/c²], solution, problem,
@@ -116,7 +225,7 @@ def film_at(ld, e, edot, cavitation, supply, mesh=GROOVED_MESH, warm=None):
         labels = np.full(nt * nz, -1)
         labels[:nz] = 0  # node row 0 sits on the line
     else:
-        labels = groove_labels(prob.theta, nz, supply)
+        labels = supply.labels(prob.theta, prob.zeta)
         if supply.feed > 0.0:
             pfix = np.full(nt * nz, supply.feed)
     fixed = (labels >= 0) if supply is not None else None
@@ -145,6 +254,12 @@ def equilibrium(ld, eps, cavitation, supply, mesh=GROOVED_MESH, tol=1e-10, max_i
 
     phi0 = 0.5 * math.pi * (1.0 - eps)
     d0, *rest0 = delta(phi0, None)
+    if not np.any(rest0[0]):  # an empty film: a mass-conserving film the supply does not feed
+        raise ValueError(
+            f"eps = {eps!r}: the {cavitation} film carries no load; its supply feeds it no oil (a "
+            "circumferential groove at ambient pressure feeds a mass-conserving film only with a feed "
+            "pressure > 0)"
+        )
     phi1 = phi0 - d0
     for _ in range(max_iter):
         d1, F, sol, prob, fixed, lab = delta(phi1, rest0[1].state)

@@ -25,7 +25,7 @@ from scipy.sparse.linalg import splu
 
 from jointdyn.core import interrupts
 from jointdyn.film.fv import assemble, check_ld
-from jointdyn.film.grooved import Grooves, groove_labels
+from jointdyn.film.grooved import Grooves
 from jointdyn.film.jfo import transport
 
 #: default mesh of the transient film: uniform cells around, cells on the half length [-]
@@ -63,10 +63,10 @@ class TransientFilm:
             raise ValueError(f"mesh = {mesh!r} [-]: needs at least 8 cells around and 2 on the half length")
         self.ld, self.mesh = float(ld), (nt, nz)
         p0 = assemble(0.0, ld, nt, nz, kappa=0.0)
-        self.labels = groove_labels(p0.theta, nz, grooves)
+        self.labels = grooves.labels(p0.theta, p0.zeta)
         self.fixed = self.labels >= 0
         self.pfix = np.where(self.fixed, float(grooves.feed), 0.0)
-        self.ngroove = len(grooves.centres)
+        self.ngroove = grooves.count
         self.theta = np.repeat(p0.theta, nz)
 
     def film(self, e) -> tuple:

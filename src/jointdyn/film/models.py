@@ -91,11 +91,19 @@ class Finite:
     (half-Sommerfeld: negative pressures clipped), ``reynolds`` (Swift–Stieber: p ≥ 0 and
     ∂p/∂θ = 0 at rupture, the classical design tables), ``jfo`` (mass-conserving, transient: no
     table, the film's history is part of the element [T306]) or a registered plugin [T88]"""
+    supply: str = "axial_grooves"
+    """jfo only: the supply feature [T366]: ``axial_grooves`` (over the full length),
+    ``feed_holes`` (round, at mid-length) or ``circumferential_groove`` (all around, at mid-length)"""
     supply_angle: float = 90.0
-    """jfo only: centre of the axial supply groove in the bushing frame, from the bushing
-    body's x axis counter-clockwise [deg], in [0, 360)"""
+    """jfo only: centre of the (first) axial groove or feed hole in the bushing frame, from the
+    bushing body's x axis counter-clockwise [deg], in [0, 360)"""
+    supply_count: int = 1
+    """jfo only: axial grooves or feed holes, evenly spaced from ``supply_angle`` [-], 1 … 8"""
     supply_width: float = 20.0
-    """jfo only: angular width of the supply groove [deg], in (0, 360)"""
+    """jfo only: angular width of each axial groove [deg], in (0, 360/supply_count)"""
+    supply_diameter: float = 0.0
+    """jfo only: feed-hole diameter, or the circumferential groove's axial width [m], > 0 and
+    < the bearing length (needed by those two features)"""
     supply_pressure: float = 0.0
     """jfo only: gauge pressure of the oil in the supply groove [Pa], ≥ 0"""
     cells_around: int = 36
@@ -112,8 +120,17 @@ class Finite:
 
         if self.cavitation not in names():
             raise ValueError(f"Finite.cavitation = {self.cavitation!r}: unknown; valid: {list(names())}")
+        if self.supply not in SUPPLY_FEATURES:
+            raise ValueError(f"Finite.supply = {self.supply!r}: unknown; valid: {list(SUPPLY_FEATURES)}")
+        if self.supply != "axial_grooves" and not self.supply_diameter > 0.0:
+            raise ValueError(
+                f"Finite.supply_diameter = {self.supply_diameter!r} [m]: {self.supply} need(s) it > 0 "
+                "(hole diameter or groove width, < the bearing length)"
+            )
         checks = (
             ("supply_angle", "deg", "in [0, 360)", lambda v: 0.0 <= v < 360.0),
+            ("supply_count", "-", "an integer in [1, 8]", lambda v: v == int(v) and 1 <= v <= 8),
+            ("supply_diameter", "m", ">= 0", lambda v: v >= 0.0),
             ("supply_width", "deg", "in (0, 360)", lambda v: 0.0 < v < 360.0),
             ("supply_pressure", "Pa", ">= 0", lambda v: v >= 0.0),
             ("cells_around", "-", "an integer in [8, 720]", lambda v: v == int(v) and 8 <= v <= 720),
@@ -144,6 +161,8 @@ class Finite:
         return build_table(length / (2.0 * journal_radius), cavitation=self.cavitation)
 
 
+#: the supply features of the transient jfo film [T366]
+SUPPLY_FEATURES = ("axial_grooves", "feed_holes", "circumferential_groove")
 FILM_MODELS = {"ott": Ott, "alshaer2005": Alshaer2005, "short": Short, "finite": Finite}
 check_codes(FILM_MODELS, "film model")
 FILM_WIDTH = block_width(FILM_MODELS)

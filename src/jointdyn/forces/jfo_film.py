@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import njit
 
-from jointdyn.film.grooved import Grooves
+from jointdyn.film.grooved import CircumferentialGroove, FeedHoles, Grooves
 from jointdyn.film.jfo_step import geometry, jfo_step
 from jointdyn.film.jfo_transient import TransientFilm
 
@@ -49,7 +49,7 @@ def pack(film, length: float, journal_radius: float, viscosity: float, clearance
     (zig-zag order, its inverse)."""
     R = journal_radius
     feed = film.supply_pressure * clearance**2 / (6.0 * viscosity * R * R)  # P_f [1/s] [T300]
-    grooves = Grooves((math.radians(film.supply_angle),), math.radians(film.supply_width), feed)
+    grooves = supply_feature(film, length, R, feed)
     mesh = (int(film.cells_around), int(film.cells_half_length))
     g = geometry(TransientFilm(length / (2.0 * R), grooves, mesh))
     return [
@@ -60,6 +60,26 @@ def pack(film, length: float, journal_radius: float, viscosity: float, clearance
         np.stack([g.area, np.where(g.fixed, g.pfix, -1.0)], axis=1),
         np.stack([g.perm.astype(float), g.inv.astype(float)], axis=1),
     ]
+
+
+def supply_feature(film, length: float, journal_radius: float, feed: float):
+    """The supply feature of a jfo film [T366] in the bushing frame (first at ``supply_angle``,
+    ``supply_count`` evenly spaced), feed P_f [1/s]; sizes against the bearing ``length`` [m]."""
+    n = 1 if film.supply == "circumferential_groove" else int(film.supply_count)
+    a0 = math.radians(film.supply_angle)
+    centres = tuple((a0 + 2.0 * math.pi * k / n) % (2.0 * math.pi) for k in range(n))
+    try:
+        if film.supply == "axial_grooves":
+            return Grooves(centres, math.radians(film.supply_width), feed)
+        if not film.supply_diameter < length:
+            raise ValueError(f"must be < the bearing length = {length!r} [m]")
+        size = film.supply_diameter / journal_radius
+        if film.supply == "feed_holes":
+            return FeedHoles(centres, size, feed)
+        return CircumferentialGroove(size, feed)
+    except ValueError as err:
+        key = "supply_width" if film.supply == "axial_grooves" else "supply_diameter"
+        raise ValueError(f"Finite.{key} (supply = {film.supply!r}, supply_count = {n}): {err}") from None
 
 
 def cells(film) -> int:
