@@ -33,6 +33,16 @@ def numeric_coefficients(cavitation: str, ld: float, eps, supply, mesh=GROOVED_M
     return {k: np.array([r[k] for r in rows]) for k in cols}
 
 
+def _couette(x: float, supply, fixed, prob) -> float:
+    """∫dθ/H of the Couette shear [T77]: around the whole clearance, 2π/√(1 − ε²), except for a
+    partial arc, whose open part has no bearing surface: the arc's nodes (uniform mesh) [T366]."""
+    if not isinstance(supply, grooved.PartialArc):
+        return 2.0 * math.pi / math.sqrt(1.0 - x * x)
+    nt, nz = prob.shape
+    on = ~fixed.reshape(nt, nz)[:, 0]
+    return float(np.sum(2.0 * math.pi / nt / (1.0 + x * np.cos(prob.film_theta[on]))))
+
+
 def grooved_table(
     cavitation: str, ld: float, eps, grooves, mesh=GROOVED_MESH, coefficients: bool = True
 ) -> dict:
@@ -64,7 +74,7 @@ def grooved_table(
             "ld": ld,
             "sommerfeld": 2.0 * ld / (math.pi * W),
             "attitude_deg": math.degrees(phi),
-            "friction_variable": (4.0 * math.pi * ld / math.sqrt(1.0 - x * x) + 0.5 * x * Ft) / W,
+            "friction_variable": (2.0 * ld * _couette(x, grooves, fixed, prob) + 0.5 * x * Ft) / W,
             "flow_variable": math.pi * fl["supply"] / (2.0 * ld),
             "side_flow_ratio": fl["side"] / fl["supply"],
             "pressure_ratio": W / (24.0 * ld * pmax),

@@ -37,30 +37,30 @@ def _floats(text: str, name: str) -> list[float]:
         ) from None
 
 
-def _supply(grooves, groove_width, holes, hole_diameter, circumferential, feed_pa, ld, extra):
+def _supply(grooves, groove_width, holes, hole_diameter, circumferential, arc, feed_pa, ld, extra):
     """The supply feature of the options, its feed pressure made dimensionless [T245], or None
     (the plain bearing) [T244, T366]."""
-    from jointdyn.film.grooved import CircumferentialGroove, axial_grooves, feed_holes
+    from jointdyn.film.grooved import CircumferentialGroove, axial_grooves, feed_holes, partial_arc
 
-    given = [
-        o
-        for o, v in (
-            ("--grooves", grooves),
-            ("--feed-holes", holes),
-            ("--circumferential-groove", circumferential),
-        )
-        if v is not None
-    ]
+    options = (
+        ("--grooves", grooves),
+        ("--feed-holes", holes),
+        ("--circumferential-groove", circumferential),
+        ("--partial-arc", arc),
+    )
+    given = [o for o, v in options if v is not None]
     if len(given) > 1:
         raise ValueError(
-            f"{' and '.join(given)}: give one supply feature (axial grooves, feed holes or a "
-            "circumferential groove)"
+            f"{' and '.join(given)}: give one supply feature (axial grooves, feed holes, a "
+            "circumferential groove or a partial arc)"
         )
     if holes is None and hole_diameter is not None:
         raise ValueError("--hole-diameter needs --feed-holes")
     if not given:
         if feed_pa != 0.0:
-            raise ValueError("--feed-pressure needs --grooves, --feed-holes or --circumferential-groove")
+            raise ValueError(
+                "--feed-pressure needs --grooves, --feed-holes, --circumferential-groove or --partial-arc"
+            )
         return None
     if not (math.isfinite(feed_pa) and feed_pa >= 0.0):
         raise ValueError(f"--feed-pressure {feed_pa!r} [Pa]: must be finite and >= 0 (gauge)")
@@ -73,6 +73,8 @@ def _supply(grooves, groove_width, holes, hole_diameter, circumferential, feed_p
         feed = feed_pa * clearance**2 / (6.0 * viscosity * omega * radius**2)  # P_f [T245]
     if grooves is not None:
         return axial_grooves(grooves, groove_width, feed)
+    if arc is not None:
+        return partial_arc(arc, feed)
     lr = 2.0 * ld  # L/R
     for name, v in (("--hole-diameter", hole_diameter), ("--circumferential-groove", circumferential)):
         if v is not None and not (math.isfinite(v) and 0.0 < v < 1.0):
@@ -112,6 +114,9 @@ def bearing_table_cmd(
     circumferential_groove: float = typer.Option(
         None, help="a groove all around at mid-length: its width as a fraction of the bearing length L"
     ),
+    partial_arc: float = typer.Option(
+        None, help="partial bearing: its arc in degrees, centred on the load line (open elsewhere)"
+    ),
     feed_pressure: float = typer.Option(
         0.0, help="supply pressure in Pa (gauge; > 0 needs --speed --radius --clearance --viscosity)"
     ),
@@ -138,6 +143,7 @@ def bearing_table_cmd(
             feed_holes,
             hole_diameter,
             circumferential_groove,
+            partial_arc,
             feed_pressure,
             ld,
             (speed, radius, clearance, viscosity),

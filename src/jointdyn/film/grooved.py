@@ -94,6 +94,26 @@ def feed_holes(n: int, diameter: float, feed: float = 0.0) -> FeedHoles:
     return FeedHoles(_spaced(n), diameter, feed)
 
 
+@dataclass(frozen=True)
+class PartialArc(Grooves):
+    """A partial bearing [T366]: the arc of bearing surface is centred on the load line, the
+    rest is open (at the supply pressure) — one axial "groove" of width 2π − arc opposite the load.
+    ``arc`` is the bearing surface's angle [rad]; ``open_flow_1`` the flow into the open part."""
+
+    flow_name: ClassVar[str] = "open_flow"
+
+    @property
+    def arc(self) -> float:
+        return 2.0 * math.pi - self.width
+
+
+def partial_arc(arc_deg: float, feed: float = 0.0) -> PartialArc:
+    """A partial bearing of ``arc_deg`` [deg] centred on the load line [T366]."""
+    if not (math.isfinite(arc_deg) and 0.0 < arc_deg < 360.0):
+        raise ValueError(f"partial arc = {arc_deg!r} [deg]: must be in (0, 360)")
+    return PartialArc((math.pi,), math.radians(360.0 - arc_deg), feed)
+
+
 def _spaced(n: int) -> tuple[float, ...]:
     """n angles evenly spaced from +90° off the load line [rad]."""
     return tuple((0.5 * math.pi + 2.0 * math.pi * k / n) % (2.0 * math.pi) for k in range(n))
