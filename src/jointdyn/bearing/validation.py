@@ -66,9 +66,35 @@ def load_butenschoen(path: str | Path) -> dict:
     for r in rows:
         num, _, den = r["bd"].partition("/")
         d = out.setdefault(float(num) / float(den or 1.0), {})
-        for k in ("eps", "So", "beta_deg", "Q"):
-            d.setdefault(k, []).append(float(r[k]))
+        for k in r:
+            if k != "bd":
+                d.setdefault(k, []).append(float(r[k]))
     return {ld: {k: np.array(v) for k, v in d.items()} for ld, d in out.items()}
+
+
+def squeeze_quantities(ld: float, eps: float, cavitation: str, mesh=None) -> dict:
+    """Butenschön's pure-squeeze variables [T367] of the plain finite bearing: the journal at ε
+    moving along the line of centres, towards the minimum film for ``eps`` > 0 (approach), away
+    from it for ``eps`` < 0 (separation), no rotation; fed at ambient pressure through a line at
+    the maximum film (approach) or the minimum film (separation), as the source's reference setup.
+    So = Fψ²/(BDη|ε̇|) = |F̄|/(4λ), β = angle of the force from the line of centres [deg] (180 for
+    approach: the film pushes back), Q = Q_side/(R²c|ε̇|)."""
+    from jointdyn.film.grooved import GROOVED_MESH, film_at
+    from jointdyn.film.jfo import flows
+
+    xi, rate = abs(eps), (1.0 if eps > 0.0 else -1.0)
+    line = ("line", math.pi if rate > 0.0 else 0.0)
+    # ė = (ξ̇, ξ/2): t·ė = ξ/2 makes Ω = 0 in film_at's ξ − 2t·ė = ξΩ [T246]; rates in |ε̇| = 1
+    F, sol, prob, fixed, lab = film_at(
+        ld, (max(xi, 1e-12), 0.0), (rate, 0.5 * xi), cavitation, line, mesh or GROOVED_MESH
+    )
+    fill = np.ones(sol.P.size) if sol.fill is None else sol.fill
+    q = flows(prob, rate, 0.0, sol.P, fill, fixed, lab)["side"]  # [ωR²c/2], here ω → |ε̇|
+    return {
+        "So": math.hypot(F[0], F[1]) / (4.0 * ld),
+        "beta_deg": math.degrees(math.atan2(F[1], F[0])),
+        "Q": 0.5 * q,
+    }
 
 
 def butenschoen_quantities(tab: dict) -> dict:
