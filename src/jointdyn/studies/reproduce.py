@@ -23,6 +23,7 @@ from jointdyn import post
 from jointdyn.models import slider_crank as sc
 from jointdyn.studies.outputs import header
 from jointdyn.studies.runs import run_shipped
+from jointdyn.viz.reproduce_data import figure_data
 from jointdyn.viz.reproduce_figures import caption, drawing
 
 
@@ -377,7 +378,7 @@ def _report(od, runs: dict, revs: float, progress, ensemble: bool) -> None:
         with od.write(name) as tmp:
             tmp.write_bytes(data)
 
-    with drawing(runs, revs) as drawn:  # in another process, meanwhile the ensemble runs [T220]
+    with drawing(figure_data(runs, revs), revs) as drawn:  # in another process meanwhile [T220, T360]
         ens = None
         if ensemble:  # after the paper's dry case: the worker processes reuse its compiled code
             from jointdyn.studies.reproduce_ensemble import (
