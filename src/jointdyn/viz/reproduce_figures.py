@@ -45,7 +45,6 @@ def _png(fig, dpi: float = 130) -> bytes:
 
 
 PAPER = ("perfect", "dry", "ott", "alshaer2005")
-PIN = "piston_pin"
 
 
 def _styles(names) -> dict[str, tuple[str, str]]:
