@@ -75,9 +75,10 @@ def main(argv=None) -> list[tuple[str, float, float]]:
     for case in rp.PAPER_CASES + rp.BEYOND_CASES:
         runs[case.name] = (*rp.run_case(case, a.revs), case)
     mark(f"{len(runs)} simulations")
+    from jointdyn.viz.reproduce_data import figure_data
     from jointdyn.viz.reproduce_figures import drawing
 
-    with drawing(runs, a.revs) as drawn:
+    with drawing(figure_data(runs, a.revs), a.revs) as drawn:
         child = _child_peak(drawn)
     mark("matplotlib figures (other process)")
     print(f"{'  the drawing process':<40} peak {child:6.0f} MB", flush=True)

@@ -4,6 +4,7 @@ matplotlib's bounding boxes no legend covers a plotted point and no axes is empt
 
 import csv
 import io
+import os
 
 import matplotlib
 
@@ -15,6 +16,7 @@ import pytest
 from jointdyn.models import slider_crank as sc
 from jointdyn.studies.reproduce import BEYOND_CASES, PAPER_CASES, csv_files, run_case
 from jointdyn.viz import plots, style
+from jointdyn.viz.reproduce_data import figure_data
 from jointdyn.viz.reproduce_figures import _png, draw_all
 
 CASES = {c.name: c for c in PAPER_CASES + BEYOND_CASES}
@@ -144,7 +146,7 @@ def test_every_figure_of_the_main_job_keeps_legends_off_the_data(runs):
         problems.extend(_review(name, f))
 
     try:
-        draw_all(fig, runs, REVS, emit)
+        draw_all(fig, figure_data(runs, REVS), REVS, emit)
     finally:
         plt.close(fig)
     expected = {f"moment_{n}.png" for n in ("perfect", "dry", "ott", "alshaer2005")}
@@ -167,12 +169,42 @@ def test_one_draw_png_is_byte_identical_to_savefig(runs):
         pairs[name] = (once, buf.getvalue())
 
     try:
-        draw_all(fig, runs, REVS, emit)
+        draw_all(fig, figure_data(runs, REVS), REVS, emit)
     finally:
         plt.close(fig)
     assert len(pairs) == 13  # 4 moments and 5 orbits of SHORT, overlay, beyond, film, force
     assert [n for n, (a, b) in pairs.items() if a != b] == []
     assert all(a.startswith(b"\x89PNG") for a, _ in pairs.values())
+
+
+def test_the_drawing_process_loads_no_kernel_and_draws_the_same_bytes(runs, tmp_path):
+    """[T360] the figure-drawing interpreter imports jointdyn's drawing modules without the
+    package's ``__init__``: no numba, no simulation module; its PNGs are the bytes the same
+    figures have when drawn in this process (jointdyn fully imported)."""
+    import ast
+    import pickle
+    import subprocess
+    import sys
+
+    from jointdyn.viz.reproduce_figures import bare_package, figures
+
+    data = figure_data(runs, REVS)
+    (tmp_path / "in.pickle").write_bytes(pickle.dumps((data, REVS)))
+    code = bare_package() + (
+        "import pickle; from jointdyn.viz.reproduce_figures import _draw; "
+        f"_draw({str(tmp_path / 'in.pickle')!r}, {str(tmp_path / 'out.pickle')!r}, {os.getpid()}); "
+        "print(sorted(m for m in sys.modules if m.split('.')[0] in ('jointdyn', 'numba', 'scipy')))"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
+    loaded = set(ast.literal_eval(out))
+    assert not any(
+        m.startswith(("numba", "scipy", "jointdyn.multibody", "jointdyn.simulation")) for m in loaded
+    )
+    assert "jointdyn.viz.reproduce_figures" in loaded and "jointdyn.post" not in loaded
+    drawn = pickle.loads((tmp_path / "out.pickle").read_bytes())
+    here = figures(data, REVS)
+    assert len(here) == 13 and drawn.keys() == here.keys()
+    assert [n for n in here if drawn[n] != here[n]] == []
 
 
 def test_small_orbit_is_zoomed_and_every_orbit_says_its_frame(runs):
@@ -181,7 +213,7 @@ def test_small_orbit_is_zoomed_and_every_orbit_says_its_frame(runs):
     try:
         draw_all(
             fig,
-            runs,
+            figure_data(runs, REVS),
             REVS,
             lambda n, f: seen.setdefault(n, (f.axes[0].get_xlabel(), len(f.axes[0].child_axes))),
         )
@@ -255,7 +287,7 @@ def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
 
     fig = plt.figure()
     try:
-        draw_all(fig, runs, REVS, emit)
+        draw_all(fig, figure_data(runs, REVS), REVS, emit)
     finally:
         plt.close(fig)
     assert set(drawn) == set(runs) and all(len(c) == 1 for c in drawn.values()), drawn  # one colour a case

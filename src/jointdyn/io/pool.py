@@ -16,8 +16,6 @@ def worker_init(parent: int, kinds: tuple | None = None) -> None:
     """Worker processes ignore Ctrl-C (the parent stops them) and die with their parent
     (Linux ``PR_SET_PDEATHSIG``), so a killed run leaves no orphans; they pack their systems for
     the parent's shared ``kinds`` too, if any (its compiled kernels, from the cache) [T322, T341]."""
-    import signal
-
     from jointdyn.multibody.system import share_kinds_in_process
 
     share_kinds_in_process(kinds)
@@ -25,6 +23,14 @@ def worker_init(parent: int, kinds: tuple | None = None) -> None:
     from jointdyn.io.rundir import close_inherited
 
     close_inherited()
+    detach(parent)
+
+
+def detach(parent: int) -> None:
+    """This process ignores Ctrl-C (``parent`` stops it) and dies with ``parent`` (Linux
+    ``PR_SET_PDEATHSIG``); imports nothing of jointdyn (the figure-drawing process [T360])."""
+    import signal
+
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     try:

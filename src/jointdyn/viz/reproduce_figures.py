@@ -1,6 +1,8 @@
 """Figures of the reproduction of Alshaer et al. (2005): the paper's figure equivalents and the
 beyond-the-paper overlay, as PNG bytes (used by :mod:`jointdyn.studies.reproduce`), drawn in a process of
-their own (:func:`drawing`, [T220])."""
+their own (:func:`drawing`, [T220]) from plain arrays (:func:`jointdyn.viz.reproduce_data.figure_data`):
+this module imports numpy, matplotlib and jointdyn's plain drawing helpers only, so the drawing
+process never loads numba or a compiled kernel [T360]."""
 
 from __future__ import annotations
 
@@ -16,7 +18,6 @@ from pathlib import Path
 
 import numpy as np
 
-from jointdyn import post
 from jointdyn.viz import plots, style
 
 
@@ -51,16 +52,6 @@ def _styles(names) -> dict[str, tuple[str, str]]:
     return style.styles(list(names))
 
 
-def _last(res, revs: float):
-    """The last revolution (or the whole run when it is shorter)."""
-    return res.last_revolutions(min(1.0, revs))
-
-
-def _deg(res):
-    a = res.crank_angle()
-    return np.degrees(a - a[0])
-
-
 def _sheet(fig, size, *grid, **kw):
     """The report's one figure, cleared and resized to ``size`` [in], with new subplots, laid
     out by matplotlib's constrained layout (legends outside the axes get their room); a new
@@ -71,8 +62,9 @@ def _sheet(fig, size, *grid, **kw):
     return fig.subplots(*grid, **kw)
 
 
-def figures(runs: dict, revs: float) -> dict[str, bytes]:
-    """All report figures as PNG bytes, keyed by file name."""
+def figures(data: dict, revs: float) -> dict[str, bytes]:
+    """All report figures of ``data`` (:func:`~jointdyn.viz.reproduce_data.figure_data`) as PNG
+    bytes, keyed by file name."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -81,28 +73,29 @@ def figures(runs: dict, revs: float) -> dict[str, bytes]:
     fig = plt.figure()
     out: dict[str, bytes] = {}
     try:
-        draw_all(fig, runs, revs, lambda name, f: out.__setitem__(name, _png(f)))
+        draw_all(fig, data, revs, lambda name, f: out.__setitem__(name, _png(f)))
         return out
     finally:
         plt.close(fig)
 
 
 @contextmanager
-def drawing(runs: dict, revs: float) -> Iterator[Callable[[], dict[str, bytes]]]:
-    """Start drawing :func:`figures` in a fresh interpreter; yields a function that waits for
-    them and returns them. matplotlib (≈ 70 MB with its drawing) then never shares a process
-    with numba's loaded kernels (≈ 130 MB), so the reproduction's peak resident set is the larger
-    of the two, not their sum [T220]; the caller goes on (e.g. with the dry ensemble) meanwhile.
+def drawing(data: dict, revs: float) -> Iterator[Callable[[], dict[str, bytes]]]:
+    """Start drawing :func:`figures` of ``data`` (plain arrays and strings,
+    :func:`~jointdyn.viz.reproduce_data.figure_data`) in a fresh interpreter; yields a function
+    that waits for them and returns them. matplotlib (≈ 70 MB with its drawing) then never shares
+    a process with numba's loaded kernels (≈ 130 MB), so the reproduction's peak resident set is
+    the larger of the two, not their sum [T220]; the caller goes on (e.g. with the dry ensemble)
+    meanwhile. The interpreter imports jointdyn's modules without the package's ``__init__`` (which
+    loads the simulation and numba, ≈ 0.6 s CPU): only this module and what it imports [T360].
     The drawing process ignores Ctrl-C and dies with its parent; a signal while waiting raises
     :class:`~jointdyn.errors.Interrupted` (the drawing is killed), a failed drawing raises
     ``RuntimeError`` with the end of its error output."""
     with tempfile.TemporaryDirectory(prefix="jointdyn-figures-") as d:
-        src, dst, err = Path(d, "runs.pickle"), Path(d, "figures.pickle"), Path(d, "stderr")
-        src.write_bytes(pickle.dumps((runs, revs), protocol=pickle.HIGHEST_PROTOCOL))
-        root = str(Path(__file__).resolve().parents[2])  # this jointdyn, even if not installed
+        src, dst, err = Path(d, "data.pickle"), Path(d, "figures.pickle"), Path(d, "stderr")
+        src.write_bytes(pickle.dumps((data, revs), protocol=pickle.HIGHEST_PROTOCOL))
         code = (
-            f"import sys; sys.path.insert(0, {root!r}); from {__name__} import _draw; "
-            f"_draw({str(src)!r}, {str(dst)!r}, {os.getpid()})"
+            f"{bare_package()}from {__name__} import _draw; _draw({str(src)!r}, {str(dst)!r}, {os.getpid()})"
         )
         with err.open("wb") as stderr:
             quiet = subprocess.DEVNULL
@@ -113,6 +106,17 @@ def drawing(runs: dict, revs: float) -> Iterator[Callable[[], dict[str, bytes]]]
             if proc.poll() is None:
                 proc.kill()
             proc.wait()
+
+
+def bare_package() -> str:
+    """Python source that makes ``jointdyn`` (this one, even if not installed) an empty package of
+    this directory, so that importing a module of it runs that module and its imports, not the
+    package's ``__init__``."""
+    pkg = str(Path(__file__).resolve().parents[1])
+    return (
+        f"import sys, types; _p = types.ModuleType('jointdyn'); _p.__path__ = [{pkg!r}]; "
+        "sys.modules['jointdyn'] = _p; "
+    )
 
 
 def _collect(proc: subprocess.Popen, dst: Path, err: Path) -> dict[str, bytes]:
@@ -131,13 +135,13 @@ def _collect(proc: subprocess.Popen, dst: Path, err: Path) -> dict[str, bytes]:
 
 
 def _draw(src: str, dst: str, parent: int) -> None:
-    """The drawing process: :func:`figures` of the pickled runs, pickled into ``dst``."""
+    """The drawing process: :func:`figures` of the pickled data, pickled into ``dst``."""
     from jointdyn.core.atomic import write_bytes
-    from jointdyn.io.pool import worker_init
+    from jointdyn.io.pool import detach
 
-    worker_init(parent)
-    runs, revs = pickle.loads(Path(src).read_bytes())
-    write_bytes(Path(dst), pickle.dumps(figures(runs, revs), protocol=pickle.HIGHEST_PROTOCOL))
+    detach(parent)
+    data, revs = pickle.loads(Path(src).read_bytes())
+    write_bytes(Path(dst), pickle.dumps(figures(data, revs), protocol=pickle.HIGHEST_PROTOCOL))
 
 
 def _angle_axis(ax, revs: float, one: str) -> None:
@@ -146,9 +150,9 @@ def _angle_axis(ax, revs: float, one: str) -> None:
     plots._angle_ticks(ax, 360 * min(1.0, revs))
 
 
-def _moment(ax, r, label, st, **kw):
+def _moment(ax, d, st, **kw):
     colour, dash = st
-    return ax.plot(_deg(r), post.driving_moment(r), color=colour, ls=dash, label=label, **kw)
+    return ax.plot(d["deg"], d["moment"], color=colour, ls=dash, label=d["label"], **kw)
 
 
 def _below(fig, ncol: int = 2):
@@ -209,19 +213,16 @@ def caption(name: str, runs: dict) -> str:
     return name
 
 
-def draw_all(fig, runs: dict, revs: float, emit) -> None:
-    """Draw every report figure on ``fig`` in turn; ``emit(file name, fig)`` is called after each."""
-    st = _styles(runs)
-    names = [n for n in PAPER if n in runs]
-    last = {n: _last(runs[n][0], revs) for n in runs}
+def draw_all(fig, data: dict, revs: float, emit) -> None:
+    """Draw every report figure of ``data`` (:func:`~jointdyn.viz.reproduce_data.figure_data`) on
+    ``fig`` in turn; ``emit(file name, fig)`` is called after each."""
+    st = _styles(data)
+    names = [n for n in PAPER if n in data]
     one = "last revolution" if revs >= 1 else f"{revs:g} revolution"
     for n in names:
         ax = _sheet(fig, (8, 3.8))
-        res = runs[n][0]
-        plots.moment_vs_angle(
-            res.crank_angle() - res.crank_angle()[0], post.driving_moment(res), ax=ax, color=st[n][0]
-        )
-        ax.set_title(f"crank driving moment, {revs:g} revolutions — {runs[n][3].label}", fontsize=10)
+        plots.moment_vs_angle(data[n]["angle_all"], data[n]["moment_all"], ax=ax, color=st[n][0])
+        ax.set_title(f"crank driving moment, {revs:g} revolutions — {data[n]['label']}", fontsize=10)
         emit(f"moment_{n}.png", fig)
     # overlay: smooth cases on their own scale, the dry joint's spikes in a panel of their own
     smooth = [n for n in names if n != "dry"]
@@ -229,14 +230,12 @@ def draw_all(fig, runs: dict, revs: float, emit) -> None:
     axs = _sheet(fig, (8, 3.4 * panels + 0.8), panels, 1, sharex=True, squeeze=False)
     for n in smooth:
         wide = n == "perfect"
-        _moment(axs[0, 0], last[n], runs[n][3].label, st[n], lw=1.8 if wide else 1.2, zorder=3 if wide else 2)
+        _moment(axs[0, 0], data[n], st[n], lw=1.8 if wide else 1.2, zorder=3 if wide else 2)
     axs[0, 0].set_title(f"crank driving moment, {one}", fontsize=10)
     if panels == 2:
         for n in ("perfect", "dry"):
-            if n in runs:
-                _moment(
-                    axs[1, 0], last[n], runs[n][3].label, st[n], lw=1.0, zorder=3 if n == "perfect" else 2
-                )
+            if n in data:
+                _moment(axs[1, 0], data[n], st[n], lw=1.0, zorder=3 if n == "perfect" else 2)
         axs[1, 0].set_title("dry clearance joint (own scale: impact spikes)", fontsize=10)
     for ax in axs[:, 0]:
         ax.set_ylabel("moment [N·m]")
@@ -244,40 +243,40 @@ def draw_all(fig, runs: dict, revs: float, emit) -> None:
     _angle_axis(axs[-1, 0], revs, one)
     _below(fig)
     emit("moment_overlay.png", fig)
-    beyond = [n for n in runs if n not in names]
+    beyond = [n for n in data if n not in names]
     if beyond:
         ax = _sheet(fig, (8, 5.0))
-        for n in ["perfect"] + beyond if "perfect" in runs else beyond:
+        for n in ["perfect"] + beyond if "perfect" in data else beyond:
             wide = n == "perfect"
-            _moment(ax, last[n], runs[n][3].label, st[n], lw=1.4 if wide else 1.1, zorder=3 if wide else 2)
+            _moment(ax, data[n], st[n], lw=1.4 if wide else 1.1, zorder=3 if wide else 2)
         ax.set_title(f"beyond the paper: clearance, viscosity, finite length, shear ({one})", fontsize=10)
         ax.set_ylabel("moment [N·m]")
         _angle_axis(ax, revs, one)
         ax.grid(True, alpha=0.3)
         _below(fig)
         emit("moment_beyond.png", fig)
-    for n in [n for n in runs if "piston_pin" in runs[n][0].journals()]:
+    for n in [n for n in data if "ex" in data[n]]:
         ax = _sheet(fig, (4.8, 5.4))
-        ex, ey = last[n].orbit("piston_pin", frame="bushing")
+        ex, ey = data[n]["ex"], data[n]["ey"]
         plots.journal_orbit(ex, ey, ax=ax, frame="bushing (rod-eye)", color=st[n][0], label="journal centre")
-        ax.set_title(f"journal centre path in the bushing frame, {one}\n{runs[n][3].label}", fontsize=9)
+        ax.set_title(f"journal centre path in the bushing frame, {one}\n{data[n]['label']}", fontsize=9)
         style.legend_below(ax, ncol=2, y=-0.13)
         emit(f"orbit_{n}.png", fig)
-    _film(fig, runs, last, st, one, emit)
-    _joint_force(fig, runs, names, last, st, revs, one, emit)
+    _film(fig, data, st, one, emit)
+    _joint_force(fig, data, names, st, revs, one, emit)
 
 
-def _film(fig, runs, last, st, one, emit) -> None:
-    lub = [n for n in runs if runs[n][3].joint not in ("perfect", "dry")]
+def _film(fig, data, st, one, emit) -> None:
+    lub = [n for n in data if "h_min" in data[n]]
     if not lub:
         return
     ax = _sheet(fig, (8, 5.4))
-    h = {n: last[n].element("piston_pin", "h_min") * 1e6 for n in lub}
+    h = {n: data[n]["h_min"] for n in lub}
     same = _coincident(h)
     for k, n in enumerate(lub):
-        label = runs[n][3].label + (f" (within 2 % of {runs[same[n]][3].label})" if n in same else "")
+        label = data[n]["label"] + (f" (within 2 % of {data[same[n]]['label']})" if n in same else "")
         plots.series_vs_angle(
-            np.radians(_deg(last[n])),
+            np.radians(data[n]["deg"]),
             h[n],
             "minimum film thickness $h_{min}$ [µm]",
             ax=ax,
@@ -297,43 +296,28 @@ def _film(fig, runs, last, st, one, emit) -> None:
     emit("film_thickness.png", fig)
 
 
-def _record(res) -> str:
-    """The run's largest sampled |F| on the pin and where, and its recorded peak penetration
-    (between samples included, [T202]) with the elastic force K·δⁿ there (a lower bound of the
-    peak force: the damping term vanishes at the deepest point)."""
-    f = np.hypot(res.element("piston_pin", "Fx"), res.element("piston_pin", "Fy"))
-    i = int(np.argmax(f))
-    a = np.degrees(res.crank_angle() - res.crank_angle()[0])[i]
-    text = f"whole run: largest sample {f[i] / 1e3:.3g} kN at {a:.0f}° (revolution {int(a // 360) + 1})"
-    el = res.system.elements[res.system.element_names.index("piston_pin")]
-    law = getattr(el, "contact", None)
-    pen = post.max_penetration(res, "piston_pin")
-    if pen > 0 and law is not None and hasattr(law, "stiffness"):
-        fk = law.stiffness * pen ** getattr(law, "exponent", 1.0)
-        text += f"; recorded peak penetration {pen * 1e6:.3g} µm → K·δⁿ = {fk / 1e3:.3g} kN"
-    return text
-
-
-def _joint_force(fig, runs, names, last, st, revs, one, emit) -> None:
-    imp = [n for n in names if n != "perfect" and "piston_pin" in runs[n][0].journals()]
+def _joint_force(fig, data, names, st, revs, one, emit) -> None:
+    imp = [n for n in names if n != "perfect" and "force" in data[n]]
     if not imp:
         return
     axs = _sheet(fig, (8, 2.7 * len(imp) + 1.2), len(imp), 1, sharex=True, squeeze=False)
     step = 0.0
     for ax, n in zip(axs[:, 0], imp):
-        r = last[n]
-        f = np.hypot(r.element("piston_pin", "Fx"), r.element("piston_pin", "Fy"))
-        x = _deg(r)
-        ax.plot(x, f, color=st[n][0], lw=0.9, label=runs[n][3].label)  # the case's name in every figure
+        f, x = data[n]["force"], data[n]["deg"]
+        ax.plot(x, f, color=st[n][0], lw=0.9, label=data[n]["label"])  # the case's name in every figure
         i = int(np.argmax(f))
         ax.plot(x[i], f[i], "v", color=st[n][0], ms=6, label="largest sample in the window")
         step = x[1] - x[0]
-        if "perfect" in runs:
-            p = last["perfect"]
-            reaction = np.hypot(*post.joint_reaction(p, "piston_pin").T)
-            ax.plot(_deg(p), reaction, "k--", lw=0.8, label="perfect joint (reaction)")
-        title = f"{runs[n][3].label}\nthis window: largest sample {f[i] / 1e3:.3g} kN at {x[i]:.0f}°\n"
-        title += _record(runs[n][0])
+        if "perfect" in data:
+            ax.plot(
+                data["perfect"]["deg"],
+                data["perfect"]["reaction"],
+                "k--",
+                lw=0.8,
+                label="perfect joint (reaction)",
+            )
+        title = f"{data[n]['label']}\nthis window: largest sample {f[i] / 1e3:.3g} kN at {x[i]:.0f}°\n"
+        title += data[n]["record"]
         ax.set_title(title, fontsize=8)
         ax.set_ylabel("|F| [N]")
         ax.grid(True, alpha=0.3)
