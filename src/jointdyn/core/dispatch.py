@@ -144,19 +144,15 @@ def law_present(laws, slot: int) -> bool:
     return True
 
 
-def law_gate(name: str, slot: int, kernel: Callable, args: Sequence[str], default: str | Callable):
+def law_gate(name: str, slot: int, kernel: Callable, args: Sequence[str], default: str):
     """A compiled ``name(laws, *args)``: ``kernel(*args)`` if the piece ``slot`` is present in
-    ``laws`` (:func:`law_present`), else ``default`` — an expression in the names of ``args``, or
-    a kernel called with ``args`` — without compiling ``kernel`` [T322, T357]."""
+    ``laws`` (:func:`law_present`), else the expression ``default`` (in the names of ``args``)
+    without compiling ``kernel`` [T322]."""
     arglist = ", ".join(args)
 
     def build(laws):
-        if law_present(laws, slot):
-            body = f"_kernel({arglist})"
-        else:
-            body = f"_absent({arglist})" if callable(default) else default
-        ns = {"_kernel": kernel, "_absent": default}
-        return generated(name, [f"def {name}(laws, {arglist}):", f"    return {body}"], ns)
+        body = f"_kernel({arglist})" if law_present(laws, slot) else default
+        return generated(name, [f"def {name}(laws, {arglist}):", f"    return {body}"], {"_kernel": kernel})
 
     return generated_overload(name, f"laws, {arglist}", build)
 

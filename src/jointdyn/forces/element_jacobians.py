@@ -68,62 +68,25 @@ from jointdyn.forces.transfer import pair_jac, pair_rates
 
 
 @njit(inline="always")
-def _film_block(
-    lw, ip, mem, tables, q, bi, kin, mu_f, r, c, xis, dirs, De, Ded, Dxi, Dxid, DX, Du, Dt, F, DF
-):
-    """The film's force F (2,) [N] and ∂F/∂z (2, 12) into F, DF from its law's Jacobian; returns
-    (0, F_t [N], ∂F_t/∂z (12,)) [T98, T229]. ``kin`` = (e, ė, ω_i, ω_j), ``xis`` = (ξ cap, ξ_f,
-    ξ̇, ξΩ), ``dirs`` = (u, t) as in :func:`journal_jacobian` (tuples: a call of over 30
-    arguments is compiled as a ``*args`` call, which numba does not inline)."""
-    xi_cap, xi_f, xid, xi_om = xis
-    ux, uy, tx, ty = dirs
-    fr, ft, frx, fra, fro, ftx, fta, fto = film_jac_dispatch(
-        lw, ip[FILM], xi_f, xid, xi_om, mu_f, r[R_J], r[LEN], c, r[FILM_P0:FILM_P1], tables[ip[TABLE]]
-    )
-    Dfr = frx * Dxi + fra * Dxid + fro * DX
-    Dft = ftx * Dxi + fta * Dxid + fto * DX
-    F[0] = fr * ux + ft * tx
-    F[1] = fr * uy + ft * ty
-    for k in range(12):
-        DF[0, k] = ux * Dfr[k] + fr * Du[0, k] + tx * Dft[k] + ft * Dt[0, k]
-        DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
-    return 0, ft, Dft
-
-
-@njit(inline="always")
-def _film_or_jfo_block(
-    lw, ip, mem, tables, q, bi, kin, mu_f, r, c, xis, dirs, De, Ded, Dxi, Dxid, DX, Du, Dt, F, DF
-):
-    """:func:`_film_block`, or for an element with a jfo film its block in the bushing frame,
-    chained [T346]; returns (1, …) where the film's active set does not settle."""
-    if ip[JFO] == 0:
-        return _film_block(
-            lw, ip, mem, tables, q, bi, kin, mu_f, r, c, xis, dirs, De, Ded, Dxi, Dxid, DX, Du, Dt, F, DF
-        )
-    ex, ey, edx, edy, wi, wj = kin
-    tx, ty = dirs[2], dirs[3]
-    cap = min(xis[0], XI_GUARD)
-    rj, slot = r[R_J], ip[JFO]
-    Fj, DFj, bad = jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu_f, rj, c, cap, De, Ded)
+def _jfo_block(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF):
+    """The jfo film's force F (2,) [N] and ∂F/∂z (2, 12) into F, DF [T346]; returns 1 where its
+    active set does not settle, else 0."""
+    Fj, DFj, bad = jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded)
     copy_vector(F, Fj)
     copy_matrix(DF, DFj)
-    ft = F[0] * tx + F[1] * ty
-    Dft = tx * DF[0] + ty * DF[1] + F[0] * Dt[0] + F[1] * Dt[1]
-    return bad, ft, Dft
+    return bad
 
 
-film_jac_block = law_gate(
-    "film_jac_block",
+jfo_block = law_gate(
+    "jfo_block",
     JFO_PIECE,
-    _film_or_jfo_block,
-    "lw, ip, mem, tables, q, bi, kin, mu_f, r, c, xis, dirs, De, Ded, Dxi, Dxid, DX, Du, Dt, F, DF".split(
-        ", "
-    ),
-    _film_block,
+    _jfo_block,
+    "mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF".split(", "),
+    "1",
 )
-"""``film_jac_block(laws, laws, …)``: the film's block of a journal element's Jacobian (the laws
-twice: the gate's type and the kernels' argument); the jfo film's code only where the laws hold
-it (an ``if`` on a gate's constant is still typed and compiled, [T357])"""
+""":func:`_jfo_block` where the laws hold the jfo piece, else the constant 1 (never reached: the
+element's jfo slot is 0). Tiny where absent: an ``if`` on a gate's constant is still typed and
+compiled, and an inlined gate's body is compiled once more on its own to type it [T357]."""
 
 
 @njit(cache=True)
@@ -180,35 +143,38 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
         xi_om = xi_f * (wj + wi) - 2.0 * te / c
         Dxid = (te * tde / e + uded) / c
         DX = Dxi * (wj + wi) + xi_f * Dwsum - 2.0 * (-ue * tde / e + tded) / c
-        kin = (ex, ey, edx, edy, wi, wj)
-        xis = (xi_cap, xi_f, xid, xi_om)
-        dirs = (ux, uy, tx, ty)
-        bad, ft, Dft = film_jac_block(
-            laws,
-            laws,
-            ip,
-            mem,
-            tables,
-            q,
-            bi,
-            kin,
-            mu_f,
-            r,
-            c,
-            xis,
-            dirs,
-            De,
-            Ded,
-            Dxi,
-            Dxid,
-            DX,
-            Du,
-            Dt,
-            F,
-            DF,
-        )
-        if bad != 0:
-            return 1
+        if ip[JFO] != 0:  # the film's block in the bushing frame, chained [T346]
+            cap = min(xi_cap, XI_GUARD)
+            slot = ip[JFO]
+            if jfo_block(
+                laws, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu_f, r[R_J], c, cap, De, Ded, F, DF
+            ):
+                return 1
+            ft = F[0] * tx + F[1] * ty
+            Dft = np.empty(12)
+            for k in range(12):
+                Dft[k] = tx * DF[0, k] + ty * DF[1, k] + F[0] * Dt[0, k] + F[1] * Dt[1, k]
+        else:
+            fr, ft, frx, fra, fro, ftx, fta, fto = film_jac_dispatch(
+                laws,
+                ip[FILM],
+                xi_f,
+                xid,
+                xi_om,
+                mu_f,
+                r[R_J],
+                r[LEN],
+                c,
+                r[FILM_P0:FILM_P1],
+                tables[ip[TABLE]],
+            )
+            Dfr = frx * Dxi + fra * Dxid + fro * DX
+            Dft = ftx * Dxi + fta * Dxid + fto * DX
+            F[0] = fr * ux + ft * tx
+            F[1] = fr * uy + ft * ty
+            for k in range(12):
+                DF[0, k] = ux * Dfr[k] + fr * Du[0, k] + tx * Dft[k] + ft * Dt[0, k]
+                DF[1, k] = uy * Dfr[k] + fr * Du[1, k] + ty * Dft[k] + ft * Dt[1, k]
         # film force at the journal centre: a_j = s_j, a_i = s_i + e [T8, T15]
         pair_jac(DQ, F, DF, sjx, sjy, Dsj, six + ex, siy + ey, Dsi + De)
         if ip[SHEAR] != 0:
