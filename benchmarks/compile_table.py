@@ -3,6 +3,7 @@
     python -m benchmarks.compile_table                       # run slider-crank --joint alshaer2005 --revs 1
     python -m benchmarks.compile_table --top 30 -- run slider-crank --joint dry --revs 1
     python -m benchmarks.compile_table --before OLD/src      # both trees, side by side
+    python -m benchmarks.compile_table --before OLD/src --together   # both at once (shared load)
     python -m benchmarks.compile_table --cli "reproduce alshaer2005"   # any CLI command (--out D added)
 
 Runs the CLI command in a fresh process with a new, empty cache (``NUMBA_CACHE_DIR``,
@@ -21,6 +22,7 @@ import argparse
 import shlex
 import tempfile
 from collections import defaultdict
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 from benchmarks.coldstart import SRC, _run
@@ -85,12 +87,22 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(prog="python -m benchmarks.compile_table")
     ap.add_argument("--before", default=None, help="another src/ tree to measure first")
     ap.add_argument("--top", type=int, default=30)
+    ap.add_argument(
+        "--together",
+        action="store_true",
+        help="run both trees at the same time (a loaded machine then loads both alike) [T357]",
+    )
     ap.add_argument("--cli", default=None, help="the CLI command as one string (default: the argv after --)")
     ap.add_argument("rest", nargs="*")
     a = ap.parse_args(argv)
     cli = shlex.split(a.cli) if a.cli else (a.rest or "run slider-crank --joint alshaer2005 --revs 1".split())
     trees = ([("before", Path(a.before))] if a.before else []) + [("this", SRC)]
-    res = {label: _measure(src, cli) for label, src in trees}
+    if a.together:
+        with ThreadPoolExecutor(len(trees)) as pool:
+            futures = {label: pool.submit(_measure, src, cli) for label, src in trees}
+            res = {label: f.result() for label, f in futures.items()}
+    else:
+        res = {label: _measure(src, cli) for label, src in trees}
     print(f"jointdyn {' '.join(cli)} --out D   (fresh process, empty cache)")
     head = f"{'tree':<7} {'wall [s]':>8} {'CPU [s]':>8} {'compiles':>8} {'compile self [s]':>16}"
     print(f"{head} {'peak RSS':>9}")

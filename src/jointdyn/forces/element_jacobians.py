@@ -14,6 +14,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+from jointdyn.core.arrays import copy_matrix, copy_vector
+from jointdyn.core.dispatch import law_gate
 from jointdyn.core.layout import BODY_I, BODY_J, TYPE
 from jointdyn.film.models import film_jac_dispatch
 from jointdyn.forces.contact_laws import KELVIN_VOIGT, contact_jac_dispatch
@@ -50,7 +52,7 @@ from jointdyn.forces.journal import (
     XI_GUARD,
     journal_kinematics,
 )
-from jointdyn.forces.journal_pieces import asperity_on, film_viscosity, jfo_jac, jfo_on
+from jointdyn.forces.journal_pieces import JFO_PIECE, asperity_on, film_viscosity, jfo_jac
 from jointdyn.forces.kinds import kind_switch
 from jointdyn.forces.simple_jacobians import (
     harmonic_torque_dt,
@@ -63,6 +65,28 @@ from jointdyn.forces.tabulated import TABLE as TAB_TABLE
 from jointdyn.forces.tabulated import TABULATED_FORCE
 from jointdyn.forces.torsion import HARMONIC_TORQUE, TORSION_SPRING
 from jointdyn.forces.transfer import pair_jac, pair_rates
+
+
+@njit(inline="always")
+def _jfo_block(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF):
+    """The jfo film's force F (2,) [N] and ∂F/∂z (2, 12) into F, DF [T346]; returns 1 where its
+    active set does not settle, else 0."""
+    Fj, DFj, bad = jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded)
+    copy_vector(F, Fj)
+    copy_matrix(DF, DFj)
+    return bad
+
+
+jfo_block = law_gate(
+    "jfo_block",
+    JFO_PIECE,
+    _jfo_block,
+    "mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF".split(", "),
+    "1",
+)
+""":func:`_jfo_block` where the laws hold the jfo piece, else the constant 1 (never reached: the
+element's jfo slot is 0). Tiny where absent: an ``if`` on a gate's constant is still typed and
+compiled, and an inlined gate's body is compiled once more on its own to type it [T357]."""
 
 
 @njit(cache=True)
@@ -119,33 +143,17 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
         xi_om = xi_f * (wj + wi) - 2.0 * te / c
         Dxid = (te * tde / e + uded) / c
         DX = Dxi * (wj + wi) + xi_f * Dwsum - 2.0 * (-ue * tde / e + tded) / c
-        if jfo_on(laws, ip[JFO]):  # the film's block in the bushing frame, chained [T346]
-            Fj, DFj, bad = jfo_jac(
-                laws,
-                mem,
-                tables,
-                ip[JFO],
-                q,
-                bi,
-                ex,
-                ey,
-                edx,
-                edy,
-                wi,
-                wj,
-                mu_f,
-                r[R_J],
-                c,
-                min(xi_cap, XI_GUARD),
-                De,
-                Ded,
-            )
-            if bad != 0:
+        if ip[JFO] != 0:  # the film's block in the bushing frame, chained [T346]
+            cap = min(xi_cap, XI_GUARD)
+            slot = ip[JFO]
+            if jfo_block(
+                laws, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu_f, r[R_J], c, cap, De, Ded, F, DF
+            ):
                 return 1
-            F[:] = Fj
-            DF[:, :] = DFj
             ft = F[0] * tx + F[1] * ty
-            Dft = tx * DF[0] + ty * DF[1] + F[0] * Dt[0] + F[1] * Dt[1]
+            Dft = np.empty(12)
+            for k in range(12):
+                Dft[k] = tx * DF[0, k] + ty * DF[1, k] + F[0] * Dt[0, k] + F[1] * Dt[1, k]
         else:
             fr, ft, frx, fra, fro, ftx, fta, fto = film_jac_dispatch(
                 laws,

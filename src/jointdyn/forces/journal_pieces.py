@@ -141,15 +141,14 @@ jfo_commit_gate = law_gate(
 jfo_limit = law_gate("jfo_limit", JFO_PIECE, jfo_step_limit, ("mem",), "1e300")
 """the jfo film's step limit [s] [T308] (1e300 where no element has one)"""
 
-jfo_on = law_gate("jfo_on", JFO_PIECE, _nonzero, ("slot",), "False")
-"""whether the element's jfo slot is set"""
-
 
 @njit(inline="always")
-def _jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded):
+def jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded):
     """Global film force F (2,) [N] on the journal and ∂F/∂z (2, 12) for z = (q_i, q_j, q̇_i, q̇_j)
     from ∂e/∂z, ∂ė/∂z (De, Ded): the film's derivatives in the bushing frame (``jfo_jacobian``)
-    chained through e_b = Aᵀe/c, ė_b = Aᵀė/c − ω_i S e_b, ω = ω_J − ω_B and F = A F_b [T346]."""
+    chained through e_b = Aᵀe/c, ė_b = Aᵀė/c − ω_i S e_b, ω = ω_J − ω_B and F = A F_b, and 1 if
+    the film's active set does not settle else 0 [T346]. Called only where the laws hold the jfo
+    piece (``forces.element_jacobians.film_jac_block``)."""
     co, si, ebx, eby, vbx, vby = bushing_frame(q, bi, ex, ey, edx, edy, wi, c)
     fbx, fby, J, bad = jfo_jacobian(mem, tables, slot, ebx, eby, vbx, vby, wj - wi, mu, R, c, cap)
     Dx = np.zeros((5, 12))  # ∂(e_b, ė_b, ω)/∂z
@@ -177,31 +176,3 @@ def _jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, 
         DF[0, 2] -= F[1]
         DF[1, 2] += F[0]
     return F, DF, bad
-
-
-jfo_jac = law_gate(
-    "jfo_jac",
-    JFO_PIECE,
-    _jfo_jac,
-    (
-        "mem",
-        "tables",
-        "slot",
-        "q",
-        "bi",
-        "ex",
-        "ey",
-        "edx",
-        "edy",
-        "wi",
-        "wj",
-        "mu",
-        "R",
-        "c",
-        "cap",
-        "De",
-        "Ded",
-    ),
-    "(De[:, 0] * 0.0, De * 0.0, 1)",
-)
-"""(F (2,) [N], ∂F/∂z (2, 12), 1 if unsettled else 0) of the transient jfo film [T346]"""
