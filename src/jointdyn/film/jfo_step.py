@@ -140,16 +140,24 @@ def _band_lu_solve(A, b, x):
     u = (w - 1) // 2
     for q in range(n):
         x[q] = b[q]
+    row = np.empty(u)  # row j right of the diagonal, copied: the update loop then vectorises
     for j in range(n):
         piv = A[j, u]
-        for i in range(j + 1, min(n, j + u + 1)):
+        m = min(n, j + u + 1)
+        L = m - j - 1
+        for c in range(L):
+            row[c] = A[j, u + 1 + c]
+        xj = x[j]
+        for i in range(j + 1, m):
             lij = A[i, u + j - i]
             if lij != 0.0:
                 f = lij / piv
                 A[i, u + j - i] = f
-                for c in range(j + 1, min(n, j + u + 1)):
-                    A[i, u + c - i] -= f * A[j, u + c - j]
-                x[i] -= f * x[j]
+                Ai = A[i]
+                base = u + j + 1 - i
+                for c in range(L):
+                    Ai[base + c] -= f * row[c]
+                x[i] -= f * xj
     for j in range(n - 1, -1, -1):
         s = x[j]
         for c in range(j + 1, min(n, j + u + 1)):
