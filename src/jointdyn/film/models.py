@@ -98,9 +98,9 @@ class Finite:
     """jfo only: angular width of the supply groove [deg], in (0, 360)"""
     supply_pressure: float = 0.0
     """jfo only: gauge pressure of the oil in the supply groove [Pa], ≥ 0"""
-    cells_around: int = 36
-    """jfo only: cells of the uniform mesh around the bearing [-], 8 … 720"""
-    cells_half_length: int = 8
+    cells_around: int = 30
+    """jfo only: cells of the uniform mesh around the bearing [-], 8 … 720 (default 30 × 3 [T351])"""
+    cells_half_length: int = 3
     """jfo only: cells of the uniform mesh on the half length [-], 2 … 64"""
     code: ClassVar[int] = FINITE
     kernel: ClassVar = finite_force
