@@ -83,7 +83,8 @@ def test_memory_rows_widen_only_with_a_jfo_film():
     """A system without the film keeps its memory width (its output memory is unchanged)."""
     model, _ = load_model(EXAMPLE)
     s = model.compile()
-    assert s.mem0.shape[1] == len(JournalBearing.MEMORY) + 36 * 8 + 2  # the cells, then e_n [T345]
+    cells = Finite().cells_around * Finite().cells_half_length  # the example's default mesh
+    assert s.mem0.shape[1] == len(JournalBearing.MEMORY) + cells + 2  # the cells, then e_n [T345]
     assert math.isnan(s.mem0[0, list(JournalBearing.MEMORY).index("film_time")])
 
 

@@ -140,16 +140,24 @@ def _band_lu_solve(A, b, x):
     u = (w - 1) // 2
     for q in range(n):
         x[q] = b[q]
+    row = np.empty(u)  # row j right of the diagonal, copied: the update loop then vectorises
     for j in range(n):
         piv = A[j, u]
-        for i in range(j + 1, min(n, j + u + 1)):
+        m = min(n, j + u + 1)
+        L = m - j - 1
+        for c in range(L):
+            row[c] = A[j, u + 1 + c]
+        xj = x[j]
+        for i in range(j + 1, m):
             lij = A[i, u + j - i]
             if lij != 0.0:
                 f = lij / piv
                 A[i, u + j - i] = f
-                for c in range(j + 1, min(n, j + u + 1)):
-                    A[i, u + c - i] -= f * A[j, u + c - j]
-                x[i] -= f * x[j]
+                Ai = A[i]
+                base = u + j + 1 - i
+                for c in range(L):
+                    Ai[base + c] -= f * row[c]
+                x[i] -= f * xj
     for j in range(n - 1, -1, -1):
         s = x[j]
         for c in range(j + 1, min(n, j + u + 1)):
@@ -178,8 +186,10 @@ def jfo_step(
     """Backward-Euler jfo step [T300, T304] to the journal position (ex, ey) = e/c [-] from the
     cell contents ``content0`` = H⁰θ_f⁰ (N,) [-] over dt > 0 [s] at relative rotation ω [rad/s];
     ``cav`` (N,) bool, natural order: the start cavitated set (warm start), updated in place.
-    Returns (P (N,) [6μR²/c²·1/s], fill θ_f (N,), F_x, F_y [μR⁴/c²·1/s], inflow, side outflow
-    [R²c/s], content [R²c], iterations (−1: no convergence)) as
+    ``max_iter`` = 0 freezes the set: one solve with ``cav`` as given (full cells may then have
+    P < 0, cavitated ones θ_f > 1), the film of the multibody stages [T348]. Returns (P (N,)
+    [6μR²/c²·1/s], fill θ_f (N,), F_x, F_y [μR⁴/c²·1/s], inflow, side outflow [R²c/s], content
+    [R²c], iterations (−1: no convergence)) as
     :meth:`~jointdyn.film.jfo_transient.TransientFilm.step`."""
     n = nt * nz
     u = 2 * nz
@@ -208,7 +218,8 @@ def jfo_step(
     th = np.empty(n)
     its = -1
     p_tol = P_TOL * (abs(omega) + 1.0)  # round-off of P in a centred, unloaded film [T306]
-    for it in range(1, max_iter + 1):
+    frozen = max_iter == 0
+    for it in range(1, max(max_iter, 1) + 1):
         for q in range(n):
             known[q] = 0.0 if cp[q] else 1.0
         _bmv(Mb, pf, r1)
@@ -240,7 +251,7 @@ def jfo_step(
                 P[q] = x[q]
                 th[q] = 1.0
                 new = P[q] < -p_tol
-            if new != cp[q]:
+            if new != cp[q] and not frozen:
                 same = False
                 cp[q] = new
         if same:

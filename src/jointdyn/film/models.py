@@ -106,9 +106,9 @@ class Finite:
     < the bearing length (needed by those two features)"""
     supply_pressure: float = 0.0
     """jfo only: gauge pressure of the oil in the supply groove [Pa], ≥ 0"""
-    cells_around: int = 36
-    """jfo only: cells of the uniform mesh around the bearing [-], 8 … 720"""
-    cells_half_length: int = 8
+    cells_around: int = 30
+    """jfo only: cells of the uniform mesh around the bearing [-], 8 … 720 (default 30 × 3 [T351])"""
+    cells_half_length: int = 3
     """jfo only: cells of the uniform mesh on the half length [-], 2 … 64"""
     code: ClassVar[int] = FINITE
     kernel: ClassVar = finite_force

@@ -122,12 +122,11 @@ def _films(ex, ey, nt, nz, cn, sn):
 
 
 @njit(cache=True)
-def _step(ex, ey, omega, dt, content0, g):
+def _step(ex, ey, omega, dt, content0, g, cav, max_iter):
+    """One step of [T304] over dt [s] to e = (ex, ey) [c] from ``content0``; ``cav`` (N,) bool the
+    start set (``max_iter`` = 0: the set, frozen [T348])."""
     nt, nz, cn, sn, cf, sf, cv, dzf, area, fixed, pfix, perm, inv = g
     H = _films(ex, ey, nt, nz, cn, sn)
-    cav = np.empty(nt * nz, np.bool_)
-    for k in range(nt * nz):  # warm start: cells the committed content does not fill here
-        cav[k] = content0[k] < H[k] * (1.0 - 1e-12) and not fixed[k]
     P, fill, fx, fy, inflow, side, content, its = jfo_step(
         ex,
         ey,
@@ -148,7 +147,7 @@ def _step(ex, ey, omega, dt, content0, g):
         pfix,
         perm,
         inv,
-        MAX_ITER,
+        max_iter,
     )
     return H, fill, fx, fy, inflow, side, content, its
 
@@ -167,22 +166,24 @@ def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
     side outflow [m³/s] of the stage-consistent film [T345] with the journal at e = (ex, ey) [c]
     moving at (vx, vy) [c/s] (bushing frame), relative rotation ω [rad/s], viscosity μ [Pa·s],
     radius R and clearance c [m]; |e| at most ``cap`` [T306]: the committed fill θ_f frozen at e,
-    its squeeze from ė. Independent of the time t [s]. NaNs if the active set does not settle."""
+    its squeeze from ė, with the committed active set (θ_f < 1: cavitated) frozen [T348], so the
+    force is smooth in (e, ė, ω). Independent of the time t [s]."""
     g = _unpack(tables, slot)
     nt, nz, cn, sn = g[0], g[1], g[2], g[3]
     n = nt * nz
     ex, ey = _capped(ex, ey, cap)
     H = _films(ex, ey, nt, nz, cn, sn)
     content0 = H.copy()  # before the first commit (the run's start): the full film here
+    cav = np.zeros(n, np.bool_)
     if mem[FILM_TIME] == mem[FILM_TIME]:  # the committed fill θ_f = Hθ_f/H(e_n), frozen at e [T345]
         Hn = _films(mem[CELLS + n], mem[CELLS + n + 1], nt, nz, cn, sn)
         for k in range(n):
-            content0[k] = H[k] * (mem[CELLS + k] / Hn[k])
+            fill = mem[CELLS + k] / Hn[k]
+            content0[k] = H[k] * fill
+            cav[k] = fill < 1.0 and not g[9][k]  # the committed active set, frozen [T348]
     dt = DT_MIN_TURN / max(abs(omega), 1.0)
     ex1, ey1 = _capped(ex + vx * dt, ey + vy * dt, cap)
-    H1, fill, fx, fy, inflow, side, content, its = _step(ex1, ey1, omega, dt, content0, g)
-    if its < 0:
-        return math.nan, math.nan, math.nan, math.nan, math.nan
+    H1, fill, fx, fy, inflow, side, content, its = _step(ex1, ey1, omega, dt, content0, g, cav, 0)
     sf = mu * R**4 / (c * c)
     sv = R * R * c
     return fx * sf, fy * sf, content * sv, inflow * sv, side * sv
@@ -219,7 +220,11 @@ def jfo_commit(t, mem, tables, slot, ex, ey, omega, R, c, cap):
     content0 = np.empty(n)
     for k in range(n):
         content0[k] = mem[CELLS + k]
-    H, fill, fx, fy, inflow, side, content, its = _step(ex, ey, omega, dt, content0, g)
+    H = _films(ex, ey, g[0], g[1], g[2], g[3])
+    cav = np.empty(n, np.bool_)
+    for k in range(n):  # warm start: cells the committed content does not fill here
+        cav[k] = content0[k] < H[k] * (1.0 - 1e-12) and not g[9][k]
+    H, fill, fx, fy, inflow, side, content, its = _step(ex, ey, omega, dt, content0, g, cav, MAX_ITER)
     if its < 0:
         return 1
     rate = 0.0

@@ -56,6 +56,10 @@ TI31, TI32, TI33 = -0.50287263494578687595, 2.5719269498556054292, -0.5960392048
 
 NIT = 7  # Newton iterations per step at most
 THET = 0.001  # keep the Jacobian while θ ≤ THET
+# ... or while θ ≤ THET_COSTLY where a Jacobian costs many right-hand sides: Hairer's advice
+# (RADAU5, WORK(3): "increase to 0.1 say when Jacobian evaluations are costly"), for a system with
+# a transient jfo film (eleven film steps per Jacobian [T346]); measured in [T349]
+THET_COSTLY = 0.03
 QUOT1, QUOT2 = 1.0, 1.2  # keep h (and the LU) if h_new/h is in [QUOT1, QUOT2]
 SAFE = 0.9
 # h_new ∈ [h/5, 2h]: RADAU5 allows 8h; measured on the c = 0.05 mm film, growth beyond 2h mostly
@@ -65,7 +69,7 @@ UROUND = 2.220446049250313e-16
 
 # its own slots of Work.ctl (initial values in RADAU5.ctl) and Work.ictl (RADAU5.ictl); the LU
 # is valid for the step size ctl[H_LU] and the Jacobian number ictl[LU_JAC] (Work.stats[3])
-H_LU, THETA, FACCON, H_OLD, H_ACC, ERR_ACC, NEWT, HHFAC = range(CTL0, CTL0 + 8)
+H_LU, THETA, FACCON, H_OLD, H_ACC, ERR_ACC, NEWT, HHFAC, THET_JAC = range(CTL0, CTL0 + 9)
 REJECTED, HAVE_CONT, LU_JAC = range(ICTL0, ICTL0 + 3)
 # Work.K rows: Z1–Z3 (0–2), F1–F3 (3–5), collocation polynomial of the last step (6–8)
 
@@ -162,7 +166,7 @@ def attempt_radau5(t, h, P, w, rtol, atol):
     r2 = w.cz
     sig2 = complex(alphn, betan)
     faccon = max(ctl[FACCON], UROUND) ** 0.8  # RADAU5: at the start of every Newton loop
-    theta = THET  # RADAU5: a step that converges in one iteration keeps the Jacobian
+    theta = ctl[THET_JAC]  # RADAU5: a step that converges in one iteration keeps the Jacobian
     dynold = 1.0
     thqold = 1.0
     newt = 0
@@ -299,9 +303,9 @@ def accepted(h, h_prop, hmax, en, ctl, ictl, stats, reuse):
         hnew = min(hnew, h)
     ictl[REJECTED] = 0
     qt = hnew / h
-    if ctl[THETA] <= THET and QUOT1 <= qt <= QUOT2:
+    if ctl[THETA] <= ctl[THET_JAC] and QUOT1 <= qt <= QUOT2:
         hnew = h  # keep h: the LU stays valid
-    if ctl[THETA] > THET:
+    if ctl[THETA] > ctl[THET_JAC]:
         ictl[AGE] = reuse  # a new Jacobian before the next step
     return hnew
 
@@ -330,6 +334,11 @@ def dense(t, t_new, y, f0, y1, K, mem, ctl, ictl, t_out, iout, Y, MEM):
     return iout
 
 
+def costly_jacobian(w) -> None:
+    """Keep the Jacobian of the work ``w`` while θ ≤ ``THET_COSTLY`` instead of ``THET`` [T349]."""
+    w.ctl[THET_JAC] = THET_COSTLY
+
+
 # The Jacobian is kept until the Newton contraction asks for a new one (accepted), so its
 # reuse count never runs out; with the exact Jacobian it is taken right after the accepted step
 # and gives f(t, y) [T185]. θ, the Newton factor and the previous h start at 1, the LU at none.
@@ -343,7 +352,7 @@ RADAU5 = Stepper(
     stiff=True,
     reuse=(1 << 60, 1 << 60),
     jacobian_at_accept=True,
-    ctl=(-1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0),
+    ctl=(-1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0, THET),
     ictl=(0, 0, -1),
     tolerances=tolerances,
     stats=("lu_pairs", "newton_iterations", "newton_failures"),

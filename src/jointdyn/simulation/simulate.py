@@ -27,6 +27,7 @@ from jointdyn.integrators.common import (
     STEP_TOO_SMALL,
 )
 from jointdyn.integrators.driver import IOUT, RUNNING, Stepper, T, drive, method_tolerances, new_work
+from jointdyn.integrators.radau5 import RADAU5, costly_jacobian
 from jointdyn.integrators.weights import AUTO_CLEARANCE_RATIO, clearance_scale
 from jointdyn.multibody.dynamics import outputs
 from jointdyn.multibody.system import System
@@ -198,11 +199,31 @@ def resolve_solver(system: System, name: str) -> str:
     return "radau5" if any(getattr(e, "STIFF", False) for e in system.elements) else "dopri5"
 
 
-def _integrate_compiled(stepper, P, y0, mem0, config, t_out, progress, step_budget, ysc=None, rtol=None):
+def _transient_film(system: System) -> bool:
+    """Whether an element of ``system`` has the transient jfo film [T306]."""
+    from jointdyn.film.models import Finite, film_model
+
+    for e in system.elements:
+        film = getattr(e, "film", None)
+        try:
+            fm = film_model(film) if film is not None else None
+        except (ValueError, TypeError):
+            continue
+        if isinstance(fm, Finite) and fm.transient:
+            return True
+    return False
+
+
+def _integrate_compiled(
+    stepper, P, y0, mem0, config, t_out, progress, step_budget, ysc=None, rtol=None, costly=False
+):
     """Drive a compiled solver in slices of bounded wall time; returns (Work, status). ``ysc``,
-    ``rtol``: fixed error scales and the rtol they go with (None: |y_i| and config.rtol) [T186]."""
+    ``rtol``: fixed error scales and the rtol they go with (None: |y_i| and config.rtol) [T186];
+    ``costly``: the system's Jacobian is costly (radau5 keeps it longer [T349])."""
     exact = config.jacobian == "exact"
     w = new_work(stepper, y0, mem0, t_out[0], t_out, config.first_step, exact, ysc)
+    if costly and stepper is RADAU5:
+        costly_jacobian(w)
     rtol, atol = method_tolerances(stepper, config.rtol if rtol is None else rtol, config.atol)
     budget = int(step_budget) if step_budget else 16
     status = RUNNING  # the first call of drive() starts the integration (one compiled call less)
@@ -305,7 +326,7 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
     t0 = time.perf_counter()
     if compiled is not None:
         w, status = _integrate_compiled(
-            compiled, P, y0, mem0, config, t_out, progress, step_budget, ysc, rtol
+            compiled, P, y0, mem0, config, t_out, progress, step_budget, ysc, rtol, _transient_film(system)
         )
         nw, stats = int(w.ictl[IOUT]), w.stats
         Y, MEM = w.Y[:nw], w.MEM[:nw]
