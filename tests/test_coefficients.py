@@ -215,12 +215,18 @@ def test_columns_declared():
     assert set(dynamic_coefficients("ott", 1.0, 0.5)) == set(COLUMNS)
 
 
-@pytest.mark.parametrize("model,ld", [("short", 0.25), ("alshaer2005", 1.0)])
+@pytest.mark.parametrize(
+    "model,ld", [pytest.param("short", 0.25, marks=pytest.mark.slow, id="short-0.25"), ("alshaer2005", 1.0)]
+)
 def test_system_jacobian_of_a_rotor_on_the_bearing_gives_the_coefficients(model, ld):
     """A free rotor (mass m, spin ω) in a fixed bearing, loaded by gravity, sitting at the static
     equilibrium of ε = 0.6: the multibody system Jacobian [T101] (no constraints) must contain
     ∂ẍ/∂x = −K/m and ∂ẍ/∂ẋ = −C/m with K = k W/c, C = c̄ W/(cω) from [T107] — two independent
-    paths (element chain rule vs the Cartesian linearisation)."""
+    paths (element chain rule vs the Cartesian linearisation). Each film compiles a system
+    Jacobian of its own (≈ 20 s of CPU from a cold cache): the short film's case is ``slow``; its
+    film Jacobian is checked against finite differences in the default tier
+    (tests/test_jacobians_laws.py), and the path from it to the system Jacobian is the one the
+    π-film case runs."""
     from jointdyn.forces.journal import JournalBearing
     from jointdyn.multibody.jacobian import system_jacobian
     from jointdyn.multibody.model import Model
