@@ -74,7 +74,7 @@ def jfo_peak_pressure(res) -> np.ndarray:
     pressures of another film."""
     from jointdyn.core.layout import BODY_I, BODY_J
     from jointdyn.film.jfo_step import jfo_step
-    from jointdyn.forces.jfo_film import CELLS, DT_MIN_TURN, FILM_TIME, MAX_ITER, _capped, _films, _unpack
+    from jointdyn.forces.jfo_film import CELLS, DT_MIN_TURN, FILM_TIME, _capped, _films, _unpack
     from jointdyn.forces.journal import CLR, CONTACT, H_ASP, JFO, MU, NO_CONTACT, R_J, XI_GUARD
     from jointdyn.forces.journal_geometry import journal_kinematics
     from jointdyn.forces.journal_pieces import bushing_frame
@@ -96,14 +96,16 @@ def jfo_peak_pressure(res) -> np.ndarray:
         omega = wj - wi
         ebx, eby = _capped(ebx, eby, cap)
         content0 = _films(ebx, eby, nt, nz, cn, sn)
+        cav = np.zeros(n, bool)
         if mem[FILM_TIME] == mem[FILM_TIME]:  # committed fill θ_f = Hθ_f/H(e_n), frozen at e_b
-            content0 *= np.asarray(mem[CELLS : CELLS + n]) / _films(
+            fill = np.asarray(mem[CELLS : CELLS + n]) / _films(
                 mem[CELLS + n], mem[CELLS + n + 1], nt, nz, cn, sn
             )
+            content0 *= fill
+            cav = (fill < 1.0) & ~g[9]  # the committed active set, frozen [T348]
         dt = DT_MIN_TURN / max(abs(omega), 1.0)
         ex1, ey1 = _capped(ebx + vbx * dt, eby + vby * dt, cap)
-        cav = (content0 < _films(ex1, ey1, nt, nz, cn, sn) * (1.0 - 1e-12)) & ~g[9]
-        P, _, fbx, fby, *_, its = jfo_step(ex1, ey1, omega, dt, content0, cav, *g, MAX_ITER)
+        P, _, fbx, fby, *_, its = jfo_step(ex1, ey1, omega, dt, content0, cav, *g, 0)
         scale = mu * R**4 / (c * c)
         fx, fy = (co * fbx - si * fby) * scale, (si * fbx + co * fby) * scale
         if its < 0 or math.hypot(fx - fx_out[i], fy - fy_out[i]) > 1e-9 * max(math.hypot(fx, fy), 1.0):
