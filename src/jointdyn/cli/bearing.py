@@ -14,7 +14,6 @@ import typer
 from jointdyn.cli.common import _one_line_errors, app
 
 MAX_VALUES = 10_000  # eccentricity ratios in one table [-]
-FLOW_SUFFIXES = tuple(f"_flow_{k}" for k in range(1, 100))  # per supply feature [m³/s]
 
 
 def _floats(text: str, name: str) -> list[float]:
@@ -234,7 +233,7 @@ def bearing_table_cmd(
         console.print("operating point:")
         for k, v in op.items():
             if isinstance(v, float) and math.isfinite(v):
-                unit = "m³/s" if k.endswith(FLOW_SUFFIXES) else units[k]
+                unit = "m³/s" if "_flow_" in k else units[k]  # per supply feature
                 if k == "theta_end_deg" and gumbel:
                     console.print(
                         f"  {k} = {v:.6g} " + escape(f"[{unit}]") + " (by construction: the gumbel film"
