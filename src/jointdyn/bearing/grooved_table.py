@@ -51,7 +51,9 @@ def grooved_table(
     (Couette shear of the full clearance, as Raimondi–Boyd), ``flow_variable`` Q/(RcNL) of the
     total supply, ``side_flow_ratio``, ``pressure_ratio``, ``theta_pmax_deg``, ``theta_end_deg``,
     ``groove_flow_<k>`` the flow variable of groove k (k = 1 at +90° from the load; ``hole_flow_<k>``,
-    ``circumferential_flow_1`` for the other supply features of [T366]), ``fill_min``
+    ``circumferential_flow_1`` for the other supply features of [T366]; NaN for a film that is not
+    mass conserving and has a cavitated zone, whose ``flow_variable`` is then its side leakage,
+    [T370]), ``fill_min``
     (smallest fill fraction: 1 for films that are not mass conserving), ``residual`` and the
     dynamic coefficients (central differences)."""
     rows = []
@@ -63,6 +65,12 @@ def grooved_table(
         B = x / (2.0 + x * x)
         fill = np.ones(nt * nz) if sol.fill is None else sol.fill
         fl = flows(prob, 0.0, B, sol.P, fill, fixed, lab)
+        if sol.fill is None and np.any((sol.P <= 0.0) & ~fixed):
+            # a film that does not conserve mass and has a cavitated zone does not know where its
+            # oil goes: the supply is the side leakage (steady state), the split per feature is
+            # unknown [T370]
+            fl["supply"] = fl["side"]
+            fl["per_groove"] = [math.nan] * len(fl["per_groove"])
         th = prob.film_theta
         P2 = sol.P.reshape(nt, nz)
         Ft = -W * math.sin(phi)  # the film force −W·(load direction) on t = (−sin φ, cos φ)
