@@ -283,6 +283,24 @@ def jfo_step(
     return Pn, fn, -6.0 * fxs, -6.0 * fys, inflow, side, content, its
 
 
+@njit(cache=True)
+def couette_gas(fill, H, area, cv, dzf):
+    """Σ_k (1 − θ_f,k)·w_k/H_k [-] over the cells (natural order k = i·nz + j, nz = cv.size): the
+    part of the Couette integral ∫∫dθ dζ/H over both halves that the gas of partly filled cells
+    does not carry (striated flow: the lubricant spans the gap over the fraction θ_f of the
+    width). w_k = 2·area_k, the last row's widened by the end half-cell 0.5·dzf[nz−1] beyond it,
+    which takes its row's fill. 0 for a full film [T375]."""
+    nz = cv.size
+    end = 1.0 + 0.5 * dzf[nz - 1] / cv[nz - 1]
+    s = 0.0
+    for k in range(fill.size):
+        g = 1.0 - fill[k]
+        if g != 0.0:
+            w = 2.0 * area[k] * (end if k % nz == nz - 1 else 1.0)
+            s += g * w / H[k]
+    return s
+
+
 def step(geom: Geometry, e, omega: float, dt: float, content0, cav, max_iter: int = 200) -> tuple:
     """:func:`jfo_step` with its input checked (the compiled kernel itself checks nothing):
     ValueError naming the parameter for dt ≤ 0 [s], |e|/c ≥ 1 [-], a non-finite ω [rad/s] or

@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn.film.grooved import CircumferentialGroove, FeedHoles, Grooves
-from jointdyn.film.jfo_step import geometry, jfo_step
+from jointdyn.film.jfo_step import couette_gas, geometry, jfo_step
 from jointdyn.film.jfo_transient import TransientFilm
 
 #: named memory slots of the jfo film, after the journal element's and the oil temperature's
@@ -167,7 +167,8 @@ def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
     moving at (vx, vy) [c/s] (bushing frame), relative rotation ω [rad/s], viscosity μ [Pa·s],
     radius R and clearance c [m]; |e| at most ``cap`` [T306]: the committed fill θ_f frozen at e,
     its squeeze from ė, with the committed active set (θ_f < 1: cavitated) frozen [T348], so the
-    force is smooth in (e, ė, ω). Independent of the time t [s]."""
+    force is smooth in (e, ė, ω). Independent of the time t [s]. Last, the Couette integral of
+    that film's gas, :func:`~jointdyn.film.jfo_step.couette_gas` [-] [T375]."""
     g = _unpack(tables, slot)
     nt, nz, cn, sn = g[0], g[1], g[2], g[3]
     n = nt * nz
@@ -184,9 +185,10 @@ def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
     dt = DT_MIN_TURN / max(abs(omega), 1.0)
     ex1, ey1 = _capped(ex + vx * dt, ey + vy * dt, cap)
     H1, fill, fx, fy, inflow, side, content, its = _step(ex1, ey1, omega, dt, content0, g, cav, 0)
+    gas = couette_gas(fill, H1, g[8], g[6], g[7])
     sf = mu * R**4 / (c * c)
     sv = R * R * c
-    return fx * sf, fy * sf, content * sv, inflow * sv, side * sv
+    return fx * sf, fy * sf, content * sv, inflow * sv, side * sv, gas
 
 
 @njit(cache=True)
@@ -252,12 +254,13 @@ def jfo_step_limit(mem):
 
 @njit(cache=True)
 def jfo_jacobian(mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
-    """Film force (F_x, F_y) [N] of :func:`jfo_force` in the bushing frame and its derivatives
-    (2, 5) by (e_x, e_y [c], v_x, v_y [c/s], ω [rad/s]) by central differences [T346]: ten film
-    steps. The last value is 1 where a step's active set does not settle, else 0."""
+    """Film force (F_x, F_y) [N] of :func:`jfo_force` in the bushing frame, its gas Couette
+    integral [-] and the derivatives (3, 5) of the three by (e_x, e_y [c], v_x, v_y [c/s],
+    ω [rad/s]) by central differences [T346, T375]: ten film steps. The last value is 1 where a
+    step's active set does not settle, else 0."""
     x = np.array([ex, ey, vx, vy, omega])
-    fx, fy, _, _, _ = jfo_force(0.0, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap)
-    J = np.empty((2, 5))
+    fx, fy, _, _, _, gas = jfo_force(0.0, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap)
+    J = np.empty((3, 5))
     xi = math.sqrt(ex * ex + ey * ey)
     speed = math.sqrt(vx * vx + vy * vy)
     for k in range(5):
@@ -267,13 +270,14 @@ def jfo_jacobian(mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
         xm = x.copy()
         xp[k] += h
         xm[k] -= h
-        fpx, fpy, _, _, _ = jfo_force(
+        fpx, fpy, _, _, _, gp = jfo_force(
             0.0, mem, tables, slot, xp[0], xp[1], xp[2], xp[3], xp[4], mu, R, c, cap
         )
-        fmx, fmy, _, _, _ = jfo_force(
+        fmx, fmy, _, _, _, gm = jfo_force(
             0.0, mem, tables, slot, xm[0], xm[1], xm[2], xm[3], xm[4], mu, R, c, cap
         )
         J[0, k] = (fpx - fmx) / (2.0 * h)
         J[1, k] = (fpy - fmy) / (2.0 * h)
+        J[2, k] = (gp - gm) / (2.0 * h)
     bad = 0 if (fx == fx and np.all(J == J)) else 1
-    return fx, fy, J, bad
+    return fx, fy, gas, J, bad
