@@ -85,7 +85,7 @@ def test_starved_film_shears_its_wetted_arc(dt):
     g = geometry(film)
     n = g.nt * g.nz
     content = np.where(g.fixed, 1.0, 0.0)
-    P, fill, fx, fy, inflow, side, total, it = jfo_step(
+    P, fill, fx, fy, inflow, side, total, net, it = jfo_step(
         0.0, 0.0, omega, dt, content, np.zeros(n, np.bool_), *g.args(), 200
     )
     assert it > 0 and np.max(np.abs(P)) == 0.0 and np.max(fill[~g.fixed]) < 1.0

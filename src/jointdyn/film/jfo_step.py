@@ -189,7 +189,8 @@ def jfo_step(
     ``max_iter`` = 0 freezes the set: one solve with ``cav`` as given (full cells may then have
     P < 0, cavitated ones θ_f > 1), the film of the multibody stages [T348]. Returns (P (N,)
     [6μR²/c²·1/s], fill θ_f (N,), F_x, F_y [μR⁴/c²·1/s], inflow, side outflow [R²c/s], content
-    [R²c], iterations (−1: no convergence)) as
+    [R²c], the net outflow of every supply cell (N,) [R²c/s] (0 elsewhere; its sum is the
+    inflow) [T376], iterations (−1: no convergence)) as
     :meth:`~jointdyn.film.jfo_transient.TransientFilm.step`."""
     n = nt * nz
     u = 2 * nz
@@ -267,6 +268,7 @@ def jfo_step(
     content = 0.0
     Pn = np.empty(n)
     fn = np.empty(n)
+    net = np.zeros(n)
     for q in range(n):
         k = perm[q]
         i = k // nz
@@ -278,9 +280,10 @@ def jfo_step(
         fys += w * sn[i]
         side += r1[q]
         if fx[q]:
-            inflow += r1[q] + r2[q] - b0[q]
+            net[k] = r1[q] + r2[q] - b0[q]
+            inflow += net[k]
         content += 2.0 * area[k] * H[k] * th[q]
-    return Pn, fn, -6.0 * fxs, -6.0 * fys, inflow, side, content, its
+    return Pn, fn, -6.0 * fxs, -6.0 * fys, inflow, side, content, net, its
 
 
 @njit(cache=True)

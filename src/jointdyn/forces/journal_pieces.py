@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn.core.dispatch import law_gate
-from jointdyn.forces.jfo_film import jfo_commit, jfo_force, jfo_jacobian, jfo_step_limit
+from jointdyn.forces.jfo_film import feature_flows, jfo_commit, jfo_force, jfo_jacobian, jfo_step_limit
 from jointdyn.forces.mixed import asperity_loads
 from jointdyn.forces.thermal import VISC, thermal_step_limit
 
@@ -83,15 +83,19 @@ def bushing_frame(q, bi, ex, ey, edx, edy, wi, c):
 
 
 @njit(inline="always")
-def _jfo(t, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu, R, c, cap):
+def _jfo(t, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu, R, c, cap, out, o):
     co, si, ebx, eby, vbx, vby = bushing_frame(q, bi, ex, ey, edx, edy, wi, c)
-    fbx, fby, content, inflow, side, gas = jfo_force(
+    fbx, fby, content, inflow, side, gas, net = jfo_force(
         t, mem, tables, slot, ebx, eby, vbx, vby, wj - wi, mu, R, c, cap
     )
+    out[o] = content
+    out[o + 1] = inflow
+    out[o + 2] = side
+    feature_flows(tables, slot, net, out, o + 3)
     fx = co * fbx - si * fby
     fy = si * fbx + co * fby
     dmc = mu * (wj - wi) * R**4 / c * gas  # the Couette torque the gas does not carry [T375]
-    return fx * ux + fy * uy, fy * ux - fx * uy, content, inflow, side, dmc
+    return fx * ux + fy * uy, fy * ux - fx * uy, dmc
 
 
 jfo_terms = law_gate(
@@ -117,11 +121,14 @@ jfo_terms = law_gate(
         "R",
         "c",
         "cap",
+        "out",
+        "o",
     ),
-    "(0.0, 0.0, 0.0, 0.0, 0.0, 0.0)",
+    "(0.0, 0.0, 0.0)",
 )
-"""(F_r, F_t [N], content [m³], inflow, side outflow [m³/s], the Couette torque its gas does not
-carry [N·m] [T375]) of the transient jfo film of an element with its tables at ``slot`` [T306]"""
+"""(F_r, F_t [N], the Couette torque its gas does not carry [N·m] [T375]) of the transient jfo
+film of an element with its tables at ``slot`` [T306]; its content [m³], inflow, side outflow and
+flow per supply feature [m³/s] into out[o], out[o + 1], … [T376]"""
 
 
 @njit(inline="always")
