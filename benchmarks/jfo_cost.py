@@ -75,7 +75,7 @@ def step_cost(mesh, n: int) -> tuple[float, np.ndarray]:
     cpu, F = [], np.empty((n, 2))
     for k, e in enumerate(es):
         t0 = time.process_time()
-        P, fill, fx, fy, _, _, _, it = jfo_step(e[0], e[1], OMEGA, DT, content, cav, *g.args(), 200)
+        P, fill, fx, fy, _, _, _, _, it = jfo_step(e[0], e[1], OMEGA, DT, content, cav, *g.args(), 200)
         cpu.append(time.process_time() - t0)
         if it < 0:
             raise SystemExit(f"step {k}: the active set did not settle")

@@ -30,8 +30,9 @@ ELEMENT = "big_end"
 LAWS = ("gumbel", "reynolds", "jfo")
 CYCLE = 0.04  # one four-stroke cycle at 3000 rpm: 720° [s]
 N_OUT = 2 * 360 + 1  # 2° of crank angle per sample over warm-up + recorded cycle
-# solver, rtol, atol: the example's for the table films; the jfo film needs rtol 1e-9 (at 1e-7
-# the check of [T111] finds its force unresolved) and radau5 (rodas4's steps collapse at the start)
+# solver, rtol, atol: the example's for the table films; the jfo film runs radau5 at rtol 1e-9 (at
+# 1e-7 the check of [T111] found its force unresolved; rodas4 at 1e-7 now runs it in a sixth of the
+# CPU, its orbit within 0.0041 c of this one: docs/theory.md [T377])
 TABLE_RUN = ("rodas4", 1e-7, 1e-11)
 SOLVER = {"gumbel": TABLE_RUN, "reynolds": TABLE_RUN, "jfo": ("radau5", 1e-9, 1e-12)}
 # jfo film of the big end: one axial supply groove in the rod eye at 90° from the rod axis, fed at

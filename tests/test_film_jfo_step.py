@@ -28,7 +28,8 @@ MESH = (36, 8)
 def test_compiled_step_is_the_reference_step(grooves, omega):
     """40 steps of a journal on a Lissajous path (cavitated fraction 0.5–0.6, rupture and
     re-formation): pressure, fill, force, flows and content of jfo_step equal TransientFilm.step
-    to 1e-12 of their scale (measured 7e-15), with the same cavitated sets; each step's balance
+    to 1e-12 of their scale (measured 7e-15), and so do the flows per groove (the supply cells' net
+    outflows, summed per groove [T376]), with the same cavitated sets; each step's balance
     content − content⁰ = Δt·(inflow − side) holds to 1e-12 of the content."""
     f = TransientFilm(0.5, grooves, MESH)
     g = geometry(f)
@@ -43,7 +44,7 @@ def test_compiled_step_is_the_reference_step(grooves, omega):
         t = n * dt
         e = np.array([0.6 * math.cos(3.0 * t), 0.5 * math.sin(2.0 * t)])
         s = f.step(e, omega, dt, content, warm)
-        P, fill, fx, fy, inflow, side, total, it = jfo_step(
+        P, fill, fx, fy, inflow, side, total, net, it = jfo_step(
             e[0], e[1], omega, dt, content, cav, *g.args(), 200
         )
         assert it > 0
@@ -53,6 +54,9 @@ def test_compiled_step_is_the_reference_step(grooves, omega):
         assert abs(fx - s.F[0]) < 1e-12 * F and abs(fy - s.F[1]) < 1e-12 * F
         assert abs(inflow - s.inflow) < 1e-12 * abs(s.side)
         assert abs(side - s.side) < 1e-12 * abs(s.side)
+        per = [float(np.sum(net[f.labels == k])) for k in range(f.ngroove)]  # [T376]
+        assert np.allclose(per, s.per_groove, rtol=0.0, atol=1e-12 * abs(s.side))
+        assert np.all(net[~g.fixed] == 0.0)
         assert abs(total - s.content) < 1e-12 * s.content
         assert np.array_equal(cav, s.cav)
         assert abs(total - total0 - dt * (inflow - side)) < 1e-12 * total0
@@ -112,7 +116,9 @@ def test_frozen_set_step():
     other = cav.copy()
     other[np.flatnonzero(~cav & ~g.fixed)[::4]] = True
     given = other.copy()
-    P, fill, fx, fy, inflow, side, total, it = jfo_step(0.6, -0.4, 1.0, 0.01, content, other, *g.args(), 0)
+    P, fill, fx, fy, inflow, side, total, net, it = jfo_step(
+        0.6, -0.4, 1.0, 0.01, content, other, *g.args(), 0
+    )
     assert it == 1 and np.array_equal(other, given)
     assert np.all(P[given] == 0.0) and np.all(fill[~given] == 1.0)
     total0 = 2.0 * float(np.sum(g.area * content))

@@ -142,7 +142,8 @@ def test_bearing_table_prints_a_flow_per_feed_hole():
 )
 def test_jfo_element_fed_through_holes_or_a_circumferential_groove_balances(tmp_path, film):
     """The example's pin fed through a feed hole, or a pressurised circumferential groove: the
-    lubricant balance of the run closes to round-off of the content [T307]."""
+    lubricant balance of the run closes to round-off of the content [T307]; the feature's flow
+    output is the inflow [T376]."""
     text = EXAMPLE.read_text(encoding="utf-8").replace("supply_angle = 90.0 }", film + " }")
     assert film in text
     path = tmp_path / "m.toml"
@@ -158,6 +159,10 @@ def test_jfo_element_fed_through_holes_or_a_circumferential_groove_balances(tmp_
     c0 = content[i0] - (v_in[i0] - v_side[i0])
     assert np.abs(content[i0:] - c0 - (v_in[i0:] - v_side[i0:])).max() <= 1e-10 * c0
     assert v_side[-1] > 1e-3 * c0 and abs(v_in[-1]) > 1e-3 * c0
+    # the one feature's flow output is the inflow [T376]
+    feature = run.element("piston_pin", "hole_flow_1" if "holes" in film else "circumferential_flow_1")
+    inflow = run.element("piston_pin", "inflow")
+    assert np.abs(feature - inflow).max() <= 1e-12 * np.abs(inflow).max()
 
 
 def _short_arc_force(eps, phi, arc):

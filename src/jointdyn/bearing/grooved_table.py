@@ -15,6 +15,7 @@ from jointdyn.film.coefficients import stability_threshold
 from jointdyn.film.field import peak_of, rupture_of
 from jointdyn.film.grooved import GROOVED_MESH, equilibrium
 from jointdyn.film.jfo import flows
+from jointdyn.film.jfo_step import couette_gas
 
 EPS_MAX = 0.99  # the largest ε of the grooved operating point [T342]
 _K = ("kxx", "kxy", "kyx", "kyy", "cxx", "cxy", "cyx", "cyy")
@@ -33,14 +34,21 @@ def numeric_coefficients(cavitation: str, ld: float, eps, supply, mesh=GROOVED_M
     return {k: np.array([r[k] for r in rows]) for k in cols}
 
 
-def _couette(x: float, supply, fixed, prob) -> float:
-    """∫dθ/H of the Couette shear [T77]: around the whole clearance, 2π/√(1 − ε²), except for a
-    partial arc, whose open part has no bearing surface: the arc's nodes (uniform mesh) [T366]."""
-    if not isinstance(supply, grooved.PartialArc):
-        return 2.0 * math.pi / math.sqrt(1.0 - x * x)
+def _couette(x: float, supply, fixed, prob, fill) -> float:
+    """∫∫θ_f dθ dζ/H of the Couette shear over the length 2λ [T77]: around the whole clearance,
+    2λ·2π/√(1 − ε²), except for a partial arc, whose open part has no bearing surface: the arc's
+    nodes (uniform mesh) [T366]; a mass-conserving film's partly filled cells carry θ_f of it
+    (``fill`` None: a film that is full) [T375]."""
     nt, nz = prob.shape
-    on = ~fixed.reshape(nt, nz)[:, 0]
-    return float(np.sum(2.0 * math.pi / nt / (1.0 + x * np.cos(prob.film_theta[on]))))
+    if not isinstance(supply, grooved.PartialArc):
+        full = 2.0 * prob.lam * (2.0 * math.pi / math.sqrt(1.0 - x * x))
+    else:
+        on = ~fixed.reshape(nt, nz)[:, 0]
+        full = 2.0 * prob.lam * float(np.sum(2.0 * math.pi / nt / (1.0 + x * np.cos(prob.film_theta[on]))))
+    if fill is None:
+        return full
+    H = np.repeat(1.0 + x * np.cos(prob.film_theta), nz)
+    return full - couette_gas(fill, H, prob.area, prob.cv, np.diff(prob.zeta))
 
 
 def grooved_table(
@@ -48,7 +56,8 @@ def grooved_table(
 ) -> dict:
     """Steady table of the grooved bearing with the load direction fixed (grooves fixed relative
     to the load) per ε [T244–T247]: ``sommerfeld``, ``attitude_deg``, ``friction_variable``
-    (Couette shear of the full clearance, as Raimondi–Boyd), ``flow_variable`` Q/(RcNL) of the
+    (Couette shear of the full clearance, as Raimondi–Boyd; of the lubricant only, θ_f, for
+    ``jfo`` [T375]), ``flow_variable`` Q/(RcNL) of the
     total supply, ``side_flow_ratio``, ``pressure_ratio``, ``theta_pmax_deg``, ``theta_end_deg``,
     ``groove_flow_<k>`` the flow variable of groove k (k = 1 at +90° from the load; ``hole_flow_<k>``,
     ``circumferential_flow_1`` for the other supply features of [T366]; NaN for a film that is not
@@ -82,7 +91,7 @@ def grooved_table(
             "ld": ld,
             "sommerfeld": 2.0 * ld / (math.pi * W),
             "attitude_deg": math.degrees(phi),
-            "friction_variable": (2.0 * ld * _couette(x, grooves, fixed, prob) + 0.5 * x * Ft) / W,
+            "friction_variable": (_couette(x, grooves, fixed, prob, sol.fill) + 0.5 * x * Ft) / W,
             "flow_variable": math.pi * fl["supply"] / (2.0 * ld),
             "side_flow_ratio": fl["side"] / fl["supply"],
             "pressure_ratio": W / (24.0 * ld * pmax),

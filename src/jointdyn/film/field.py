@@ -15,6 +15,7 @@ import numpy as np
 
 from jointdyn.film.cavitation import condition
 from jointdyn.film.fv import DEFAULT_MESH, FVProblem, assemble, check_ld, check_xi, theta_map
+from jointdyn.film.jfo_step import couette_gas
 
 
 @dataclass(frozen=True)
@@ -88,15 +89,20 @@ def forces(f: Film) -> tuple[float, float]:
 
 
 def couette_integral(f: Film) -> float:
-    """∫∫ dθ dζ / H over the full bearing, the Couette shear integral with the film full over the
-    whole circumference (the cavitated region carries the Couette shear, as in Raimondi–Boyd)
-    [T75] [-]. Exact value 4πλ/√(1−ξ²); here the periodic trapezoid rule on the mapped θ grid
-    (spectrally accurate) times the full length 2λ."""
+    """∫∫ θ_f dθ dζ / H over the full bearing, the Couette shear integral [T75] [-]. Films that
+    are not mass conserving are full over the whole circumference (the cavitated region carries
+    the Couette shear, as in Raimondi–Boyd): exact value 4πλ/√(1−ξ²), here the periodic
+    trapezoid rule on the mapped θ grid (spectrally accurate) times the full length 2λ. A
+    mass-conserving film's partly filled cells carry θ_f of it: minus :func:`couette_gas` [T375]."""
     p = f.prob
     H = 1.0 + p.xi * np.cos(p.theta)
     ds = 2.0 * math.pi / p.theta.size
     width = 2.0 * p.lam  # Σ control volumes + end half-cells = λ on each half
-    return float(np.sum(ds * p.dtheta / H) * width)
+    full = float(np.sum(ds * p.dtheta / H) * width)
+    if f.fill is None:
+        return full
+    nz = p.cv.size
+    return full - couette_gas(f.fill.ravel(), np.repeat(H, nz), p.area, p.cv, np.diff(p.zeta))
 
 
 def side_flow(f: Film) -> float:

@@ -189,7 +189,8 @@ def jfo_step(
     ``max_iter`` = 0 freezes the set: one solve with ``cav`` as given (full cells may then have
     P < 0, cavitated ones θ_f > 1), the film of the multibody stages [T348]. Returns (P (N,)
     [6μR²/c²·1/s], fill θ_f (N,), F_x, F_y [μR⁴/c²·1/s], inflow, side outflow [R²c/s], content
-    [R²c], iterations (−1: no convergence)) as
+    [R²c], the net outflow of every supply cell (N,) [R²c/s] (0 elsewhere; its sum is the
+    inflow) [T376], iterations (−1: no convergence)) as
     :meth:`~jointdyn.film.jfo_transient.TransientFilm.step`."""
     n = nt * nz
     u = 2 * nz
@@ -267,6 +268,7 @@ def jfo_step(
     content = 0.0
     Pn = np.empty(n)
     fn = np.empty(n)
+    net = np.zeros(n)
     for q in range(n):
         k = perm[q]
         i = k // nz
@@ -278,9 +280,28 @@ def jfo_step(
         fys += w * sn[i]
         side += r1[q]
         if fx[q]:
-            inflow += r1[q] + r2[q] - b0[q]
+            net[k] = r1[q] + r2[q] - b0[q]
+            inflow += net[k]
         content += 2.0 * area[k] * H[k] * th[q]
-    return Pn, fn, -6.0 * fxs, -6.0 * fys, inflow, side, content, its
+    return Pn, fn, -6.0 * fxs, -6.0 * fys, inflow, side, content, net, its
+
+
+@njit(cache=True)
+def couette_gas(fill, H, area, cv, dzf):
+    """Σ_k (1 − θ_f,k)·w_k/H_k [-] over the cells (natural order k = i·nz + j, nz = cv.size): the
+    part of the Couette integral ∫∫dθ dζ/H over both halves that the gas of partly filled cells
+    does not carry (striated flow: the lubricant spans the gap over the fraction θ_f of the
+    width). w_k = 2·area_k, the last row's widened by the end half-cell 0.5·dzf[nz−1] beyond it,
+    which takes its row's fill. 0 for a full film [T375]."""
+    nz = cv.size
+    end = 1.0 + 0.5 * dzf[nz - 1] / cv[nz - 1]
+    s = 0.0
+    for k in range(fill.size):
+        g = 1.0 - fill[k]
+        if g != 0.0:
+            w = 2.0 * area[k] * (end if k % nz == nz - 1 else 1.0)
+            s += g * w / H[k]
+    return s
 
 
 def step(geom: Geometry, e, omega: float, dt: float, content0, cav, max_iter: int = 200) -> tuple:

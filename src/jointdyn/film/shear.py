@@ -12,9 +12,9 @@ with the film force F_t on the journal along t (the models' kernels),
 torques about +z on the journal (M_J) and on the bushing body (M_B) [N·m]. The Couette integral
 is taken over the full circumference (the cavitated region carries the Couette shear of a full
 film, the Raimondi–Boyd treatment, validated by their friction variable to ≤ 3 %; docs/theory.md
-[T75]). M_J + M_B = −e F_t: together with the film force pair (F on the journal centre, −F on the
-bushing centre) the film exerts no net moment — angular momentum is balanced. Petroff (ξ → 0):
-M_J = −2πμωR³L/c.
+[T75]; the mass-conserving film shears its lubricant only, θ_f, [T375]). M_J + M_B = −e F_t:
+together with the film force pair (F on the journal centre, −F on the bushing centre) the film
+exerts no net moment — angular momentum is balanced. Petroff (ξ → 0): M_J = −2πμωR³L/c.
 """
 
 from __future__ import annotations

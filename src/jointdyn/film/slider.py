@@ -74,7 +74,9 @@ def slider_exact(a: float, b: float, depth: float, feed: float) -> dict:
     """Closed form [T250]: rupture at the pocket entry x = a (land 1 falls linearly from P_f to
     0), cavitated to x = c with content θ_f H = q, full film again from c to b (the content flux
     meets the Poiseuille flux: q = (1+d) − (1+d)³P'), land 2 back to P_f at x = 1.
-    Valid while a ≤ c ≤ b. Returns q, c, P_b = P(b) (the peak), the load ∫P dx."""
+    Valid while a ≤ c ≤ b. Returns q, c, P_b = P(b) (the peak), the load ∫P dx, the pocket's
+    fill θ_cav, and the friction force on the moving wall [μUL/h₀]: its Couette part ∫θ_f/H dx
+    and the total with 3∫H P' dx [T375]."""
     q = 1.0 + feed / a
     Hp = 1.0 + depth
     Pb = feed * (1.0 + (1.0 - b) / a)
@@ -83,7 +85,34 @@ def slider_exact(a: float, b: float, depth: float, feed: float) -> dict:
     if not (a <= c <= b and slope > 0.0):
         raise ValueError(f"feed = {feed}: the closed form needs a <= c <= b (got c = {c:.6g})")
     load = 0.5 * feed * a + 0.5 * Pb * (b - c) + 0.5 * (Pb + feed) * (1.0 - b)
-    return {"q": q, "c": c, "P_b": Pb, "load": load, "theta_cav": q / Hp}
+    # shear on the moving wall [T375]: ∫θ_f/H over the lands, the cavitated and the full pocket;
+    # 3∫H P' = 3(−P_f + (1+d)P_b + P_f − P_b) = 3d·P_b
+    couette = a + (1.0 - b) + (c - a) * (q / Hp) / Hp + (b - c) / Hp
+    return {
+        "q": q,
+        "c": c,
+        "P_b": Pb,
+        "load": load,
+        "theta_cav": q / Hp,
+        "couette": couette,
+        "friction": couette + 3.0 * depth * Pb,
+    }
+
+
+def slider_friction(prob: Slider, P: np.ndarray, fill: np.ndarray, feed: float) -> dict:
+    """Friction force on the moving wall [μUL/h₀ per unit width] of a solved slider [T375]:
+    ``couette`` Σ θ_f/H·dx (a partly filled cell shears only its lubricant's fraction θ_f of the
+    width) and ``friction`` = couette + 3∫H dP/dx, the pressure-gradient part with face
+    pressures weighted by the H³ conductances (P_f at the ends)."""
+    n = prob.x.size - 2
+    dx = 1.0 / n
+    H = prob.H
+    h3 = H**3
+    Pf = (h3[:-1] * P[:-1] + h3[1:] * P[1:]) / (h3[:-1] + h3[1:])  # faces k+1/2, k = 0..n
+    Pf[0] = Pf[-1] = feed
+    couette = float(np.sum(fill[1:-1] / H[1:-1]) * dx)
+    grad = float(np.sum(H[1:-1] * np.diff(Pf)))
+    return {"couette": couette, "friction": couette + 3.0 * grad}
 
 
 def slider_measured(prob: Slider, P: np.ndarray, fill: np.ndarray, feed: float) -> dict:

@@ -68,12 +68,18 @@ from jointdyn.forces.transfer import pair_jac, pair_rates
 
 
 @njit(inline="always")
-def _jfo_block(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF):
-    """The jfo film's force F (2,) [N] and ∂F/∂z (2, 12) into F, DF [T346]; returns 1 where its
-    active set does not settle, else 0."""
-    Fj, DFj, bad = jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded)
+def _jfo_block(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF, G):
+    """The jfo film's force F (2,) [N] and ∂F/∂z (2, 12) into F, DF [T346], its gas Couette
+    integral [-] and ∂/∂z into G (13,) [T375]; returns 1 where its active set does not settle,
+    else 0."""
+    Fj, DFj, gas, Dgas, bad = jfo_jac(
+        mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded
+    )
     copy_vector(F, Fj)
     copy_matrix(DF, DFj)
+    G[0] = gas
+    for k in range(12):
+        G[1 + k] = Dgas[k]
     return bad
 
 
@@ -81,7 +87,7 @@ jfo_block = law_gate(
     "jfo_block",
     JFO_PIECE,
     _jfo_block,
-    "mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF".split(", "),
+    "mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded, F, DF, G".split(", "),
     "1",
 )
 """:func:`_jfo_block` where the laws hold the jfo piece, else the constant 1 (never reached: the
@@ -133,6 +139,7 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
     Dsj[1, 5] = sjx
     F = np.empty(2)
     DF = np.empty((2, 12))
+    G = np.zeros(13)  # the jfo film's gas Couette integral and its derivatives [T375]
     xi = e / c
     mu_f = film_viscosity(laws, ip[THERMAL], mem, r[MU])  # μ(T) frozen between accepted steps [T311]
     if ip[FILM] != NO_FILM:
@@ -147,7 +154,27 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
             cap = min(xi_cap, XI_GUARD)
             slot = ip[JFO]
             if jfo_block(
-                laws, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu_f, r[R_J], c, cap, De, Ded, F, DF
+                laws,
+                mem,
+                tables,
+                slot,
+                q,
+                bi,
+                ex,
+                ey,
+                edx,
+                edy,
+                wi,
+                wj,
+                mu_f,
+                r[R_J],
+                c,
+                cap,
+                De,
+                Ded,
+                F,
+                DF,
+                G,
             ):
                 return 1
             ft = F[0] * tx + F[1] * ty
@@ -186,6 +213,12 @@ def journal_jacobian(q, qd, mem, bi, bj, ip, r, tables, DQ, laws):
             Dmc = kc * dw * xi_f / sq**3 * Dxi
             Dmc[11] += kc / sq
             Dmc[8] -= kc / sq
+            # a jfo film's gas carries no Couette shear: M_C − μ(ω_J − ω_B)R⁴/c·gas [T375]
+            kg = mu_f * r[R_J] ** 4 / c
+            for k in range(12):
+                Dmc[k] -= kg * dw * G[1 + k]
+            Dmc[11] -= kg * G[0]
+            Dmc[8] += kg * G[0]
             Dhalf = 0.5 * (ude * ft + e * Dft)
             for k in range(12):
                 DQ[5, k] += -Dmc[k] - Dhalf[k]

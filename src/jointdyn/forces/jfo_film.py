@@ -10,7 +10,7 @@ dt_min = ``DT_MIN_TURN``/max(|ω|, 1 rad/s) to e + ė·dt_min, so the force is a
 journal state (e, ė, ω) only, without the stage time. The accepted step commits the contents at
 t_(n+1) by the backward-Euler step over [t_n, t_(n+1)] and adds Δt·inflow, Δt·side outflow to the
 volumes in memory, so that content(t) − content(t₀) = inflow volume − side volume to round-off
-[T301, T307]. The mesh's geometry is packed into six consecutive element tables (:func:`pack`).
+[T301, T307]. The mesh's geometry is packed into seven consecutive element tables (:func:`pack`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn.film.grooved import CircumferentialGroove, FeedHoles, Grooves
-from jointdyn.film.jfo_step import geometry, jfo_step
+from jointdyn.film.jfo_step import couette_gas, geometry, jfo_step
 from jointdyn.film.jfo_transient import TransientFilm
 
 #: named memory slots of the jfo film, after the journal element's and the oil temperature's
@@ -35,23 +35,27 @@ MEMORY = {
 BASE = 10
 FILM_TIME, CONTENT, IN_VOL, SIDE_VOL, RATE = range(BASE, BASE + len(MEMORY))
 CELLS = BASE + len(MEMORY)  # the cell contents Hθ_f [-] start here
-#: element outputs of the jfo film (name -> unit)
-OUTPUTS = {"film_content": "m³", "inflow": "m³/s", "side_outflow": "m³/s"}
+#: element outputs of the jfo film (name -> unit): content and flows, then one flow slot per supply
+#: feature, up to ``MAX_FEATURES`` (an element names its own, :func:`feature_names`) [T376]
+FILM_OUTPUTS = {"film_content": "m³", "inflow": "m³/s", "side_outflow": "m³/s"}
+MAX_FEATURES = 8
+OUTPUTS = FILM_OUTPUTS | {f"feature_flow_{k + 1}": "m³/s" for k in range(MAX_FEATURES)}
 DT_MIN_TURN = 1e-4  # the shortest backward-Euler step, in radians of relative rotation [T306]
 DCONTENT_STEP = 0.05  # largest change of a cell's content Hθ_f per accepted step [-] [T308]
 MAX_ITER = 200  # active-set iterations of one step
-NTABLES = 6
+NTABLES = 7
 
 
 def pack(film, length: float, journal_radius: float, viscosity: float, clearance: float) -> list:
-    """The six (rows, 2) tables of a jfo film [T306]: (nt, nz); (cos, sin) of the cells; of the
+    """The seven (rows, 2) tables of a jfo film [T306]: (nt, nz); (cos, sin) of the cells; of the
     faces i+1/2; (cv, axial face gaps); (area, supply pressure P_f [1/s] or −1 off the supply);
-    (zig-zag order, its inverse)."""
+    (zig-zag order, its inverse); (supply feature of the cell, 0 … count − 1, or −1; unused) [T376]."""
     R = journal_radius
     feed = film.supply_pressure * clearance**2 / (6.0 * viscosity * R * R)  # P_f [1/s] [T300]
     grooves = supply_feature(film, length, R, feed)
     mesh = (int(film.cells_around), int(film.cells_half_length))
-    g = geometry(TransientFilm(length / (2.0 * R), grooves, mesh))
+    tf = TransientFilm(length / (2.0 * R), grooves, mesh)
+    g = geometry(tf)
     return [
         np.array([[float(g.nt), float(g.nz)]]),
         np.stack([g.cn, g.sn], axis=1),
@@ -59,7 +63,17 @@ def pack(film, length: float, journal_radius: float, viscosity: float, clearance
         np.stack([g.cv, g.dzf], axis=1),
         np.stack([g.area, np.where(g.fixed, g.pfix, -1.0)], axis=1),
         np.stack([g.perm.astype(float), g.inv.astype(float)], axis=1),
+        np.stack([tf.labels.astype(float), np.zeros(tf.labels.size)], axis=1),
     ]
+
+
+def feature_names(film) -> list[str]:
+    """Output names of the flows per supply feature of a jfo film, as the ``bearing-table`` columns
+    (``groove_flow_k``, ``hole_flow_k``, ``circumferential_flow_1``; k = 1 at ``supply_angle``)
+    [T366, T376]."""
+    kind = {"axial_grooves": Grooves, "feed_holes": FeedHoles}.get(film.supply, CircumferentialGroove)
+    n = 1 if kind is CircumferentialGroove else int(film.supply_count)
+    return [f"{kind.flow_name}_{k + 1}" for k in range(n)]
 
 
 def supply_feature(film, length: float, journal_radius: float, feed: float):
@@ -127,7 +141,7 @@ def _step(ex, ey, omega, dt, content0, g, cav, max_iter):
     start set (``max_iter`` = 0: the set, frozen [T348])."""
     nt, nz, cn, sn, cf, sf, cv, dzf, area, fixed, pfix, perm, inv = g
     H = _films(ex, ey, nt, nz, cn, sn)
-    P, fill, fx, fy, inflow, side, content, its = jfo_step(
+    P, fill, fx, fy, inflow, side, content, net, its = jfo_step(
         ex,
         ey,
         omega,
@@ -149,7 +163,7 @@ def _step(ex, ey, omega, dt, content0, g, cav, max_iter):
         inv,
         max_iter,
     )
-    return H, fill, fx, fy, inflow, side, content, its
+    return H, fill, fx, fy, inflow, side, content, net, its
 
 
 @njit(cache=True)
@@ -167,7 +181,9 @@ def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
     moving at (vx, vy) [c/s] (bushing frame), relative rotation ω [rad/s], viscosity μ [Pa·s],
     radius R and clearance c [m]; |e| at most ``cap`` [T306]: the committed fill θ_f frozen at e,
     its squeeze from ė, with the committed active set (θ_f < 1: cavitated) frozen [T348], so the
-    force is smooth in (e, ė, ω). Independent of the time t [s]."""
+    force is smooth in (e, ė, ω). Independent of the time t [s]. Then the Couette integral of
+    that film's gas, :func:`~jointdyn.film.jfo_step.couette_gas` [-] [T375], and the net outflow
+    of every supply cell (N,) [m³/s] [T376]."""
     g = _unpack(tables, slot)
     nt, nz, cn, sn = g[0], g[1], g[2], g[3]
     n = nt * nz
@@ -183,10 +199,24 @@ def jfo_force(t, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
             cav[k] = fill < 1.0 and not g[9][k]  # the committed active set, frozen [T348]
     dt = DT_MIN_TURN / max(abs(omega), 1.0)
     ex1, ey1 = _capped(ex + vx * dt, ey + vy * dt, cap)
-    H1, fill, fx, fy, inflow, side, content, its = _step(ex1, ey1, omega, dt, content0, g, cav, 0)
+    H1, fill, fx, fy, inflow, side, content, net, its = _step(ex1, ey1, omega, dt, content0, g, cav, 0)
+    gas = couette_gas(fill, H1, g[8], g[6], g[7])
     sf = mu * R**4 / (c * c)
     sv = R * R * c
-    return fx * sf, fy * sf, content * sv, inflow * sv, side * sv
+    return fx * sf, fy * sf, content * sv, inflow * sv, side * sv, gas, net * sv
+
+
+@njit(cache=True)
+def feature_flows(tables, slot, net, out, o):
+    """Sum the supply cells' net outflows ``net`` (N,) [m³/s] per supply feature into out[o + g]
+    (the features' own slots; the others stay 0) [T376]."""
+    n = int(tables[slot, 0, 0]) * int(tables[slot, 0, 1])
+    for g in range(MAX_FEATURES):
+        out[o + g] = 0.0
+    for k in range(n):
+        lab = int(tables[slot + 6, k, 0])
+        if lab >= 0:
+            out[o + lab] += net[k]
 
 
 @njit(cache=True)
@@ -224,7 +254,7 @@ def jfo_commit(t, mem, tables, slot, ex, ey, omega, R, c, cap):
     cav = np.empty(n, np.bool_)
     for k in range(n):  # warm start: cells the committed content does not fill here
         cav[k] = content0[k] < H[k] * (1.0 - 1e-12) and not g[9][k]
-    H, fill, fx, fy, inflow, side, content, its = _step(ex, ey, omega, dt, content0, g, cav, MAX_ITER)
+    H, fill, fx, fy, inflow, side, content, net, its = _step(ex, ey, omega, dt, content0, g, cav, MAX_ITER)
     if its < 0:
         return 1
     rate = 0.0
@@ -252,12 +282,13 @@ def jfo_step_limit(mem):
 
 @njit(cache=True)
 def jfo_jacobian(mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
-    """Film force (F_x, F_y) [N] of :func:`jfo_force` in the bushing frame and its derivatives
-    (2, 5) by (e_x, e_y [c], v_x, v_y [c/s], ω [rad/s]) by central differences [T346]: ten film
-    steps. The last value is 1 where a step's active set does not settle, else 0."""
+    """Film force (F_x, F_y) [N] of :func:`jfo_force` in the bushing frame, its gas Couette
+    integral [-] and the derivatives (3, 5) of the three by (e_x, e_y [c], v_x, v_y [c/s],
+    ω [rad/s]) by central differences [T346, T375]: ten film steps. The last value is 1 where a
+    step's active set does not settle, else 0."""
     x = np.array([ex, ey, vx, vy, omega])
-    fx, fy, _, _, _ = jfo_force(0.0, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap)
-    J = np.empty((2, 5))
+    fx, fy, _, _, _, gas, _ = jfo_force(0.0, mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap)
+    J = np.empty((3, 5))
     xi = math.sqrt(ex * ex + ey * ey)
     speed = math.sqrt(vx * vx + vy * vy)
     for k in range(5):
@@ -267,13 +298,14 @@ def jfo_jacobian(mem, tables, slot, ex, ey, vx, vy, omega, mu, R, c, cap):
         xm = x.copy()
         xp[k] += h
         xm[k] -= h
-        fpx, fpy, _, _, _ = jfo_force(
+        fpx, fpy, _, _, _, gp, _ = jfo_force(
             0.0, mem, tables, slot, xp[0], xp[1], xp[2], xp[3], xp[4], mu, R, c, cap
         )
-        fmx, fmy, _, _, _ = jfo_force(
+        fmx, fmy, _, _, _, gm, _ = jfo_force(
             0.0, mem, tables, slot, xm[0], xm[1], xm[2], xm[3], xm[4], mu, R, c, cap
         )
         J[0, k] = (fpx - fmx) / (2.0 * h)
         J[1, k] = (fpy - fmy) / (2.0 * h)
+        J[2, k] = (gp - gm) / (2.0 * h)
     bad = 0 if (fx == fx and np.all(J == J)) else 1
-    return fx, fy, J, bad
+    return fx, fy, gas, J, bad

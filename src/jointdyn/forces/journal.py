@@ -115,7 +115,7 @@ IN_CONTACT, ONSET_VEL, IMPACTS, MAX_PEN = Layout(MEMORY).slots(*MEMORY)
 O_EX, O_EY, O_XI, O_HMIN, O_FX, O_FY, O_POWER, O_FN, O_TORQUE, O_LOSS, O_EXCH = Layout(OUTPUTS).slots(
     *OUTPUTS
 )
-O_CONTENT, O_INFLOW, O_SIDE = Layout(BEARING_OUTPUTS).slots(*JFO_OUTPUTS)
+O_CONTENT, O_INFLOW, O_SIDE = Layout(BEARING_OUTPUTS).slots(*list(JFO_OUTPUTS)[:3])  # then per feature
 ASPERITY_MAX = 0.5  # asperity height ≤ this fraction of the clearance [T283]
 XI_GUARD = 1.0 - 1e-9  # film evaluated at most here when no contact law catches ξ → 1
 
@@ -367,14 +367,13 @@ def journal_element(t, q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
         xi_f = min(xi, xi_cap, XI_GUARD)
         xid = (ux * edx + uy * edy) / c
         xi_om = xi_f * (wj + wi) - 2.0 * (tx * edx + ty * edy) / c  # ξΩ [T14]
+        dmc = 0.0  # the Couette torque a jfo film's gas does not carry [T375]
         if ip[JFO] != 0:  # the transient jfo film from its committed contents [T306]
             cap = min(xi_cap, XI_GUARD)
-            fr, ft, vol, q_in, q_side = jfo_terms(
-                laws, t, mem, tables, ip[JFO], q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu_f, r[R_J], c, cap
-            )
-            out[O_CONTENT] = vol
-            out[O_INFLOW] = q_in
-            out[O_SIDE] = q_side
+            fr, ft, dmc = jfo_terms(  # writes the outputs from O_CONTENT on [T376]
+                laws, t, mem, tables, ip[JFO], q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu_f, r[R_J], c, cap,
+                out, O_CONTENT,
+            )  # fmt: skip
         else:
             tab = tables[ip[TABLE]]
             fr, ft = film_dispatch(
@@ -393,7 +392,7 @@ def journal_element(t, q, qd, mem, bi, bj, ip, r, tables, Q, out, laws):
             # shear torques [T75]: M_J = −M_C − (e/2)F_t on the journal; on the bushing
             # M_C − (e/2)F_t with −F at the bushing centre, i.e. M_C + (e/2)F_t with −F through
             # the journal centre as applied above: the film exerts no net moment
-            mc = couette_torque(xi_f, mu_f, r[R_J], r[LEN], c, wj - wi)
+            mc = couette_torque(xi_f, mu_f, r[R_J], r[LEN], c, wj - wi) - dmc  # minus the jfo gas's [T375]
             mj = -mc - 0.5 * e * ft
             mb = mc + 0.5 * e * ft
             if bj >= 0:

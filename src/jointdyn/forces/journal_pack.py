@@ -102,9 +102,17 @@ def memory_slots(el) -> dict[str, str]:
 
 
 def output_slots(el) -> dict[str, str]:
-    """The outputs a bearing writes: the jfo film's (content, flows) only with a transient film."""
+    """The outputs a bearing writes, in slot order (the first slots of the class's ``OUTPUTS``):
+    the jfo film's (content, flows, then the flow of each supply feature under its own name,
+    :func:`~jointdyn.forces.jfo_film.feature_names`) only with a transient film [T306, T376]."""
     outs = type(el).OUTPUTS
-    return dict(outs) if jfo_of(el) is not None else _split(outs, 0, len(outs) - len(jfo_film.OUTPUTS))
+    base = len(outs) - len(jfo_film.OUTPUTS)
+    jfo = jfo_of(el)
+    if jfo is None:
+        return _split(outs, 0, base)
+    return _split(outs, 0, base + len(jfo_film.FILM_OUTPUTS)) | dict.fromkeys(
+        jfo_film.feature_names(jfo), "m³/s"
+    )
 
 
 def memory_width(el) -> int:

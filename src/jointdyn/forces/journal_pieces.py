@@ -18,7 +18,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn.core.dispatch import law_gate
-from jointdyn.forces.jfo_film import jfo_commit, jfo_force, jfo_jacobian, jfo_step_limit
+from jointdyn.forces.jfo_film import feature_flows, jfo_commit, jfo_force, jfo_jacobian, jfo_step_limit
 from jointdyn.forces.mixed import asperity_loads
 from jointdyn.forces.thermal import VISC, thermal_step_limit
 
@@ -83,14 +83,19 @@ def bushing_frame(q, bi, ex, ey, edx, edy, wi, c):
 
 
 @njit(inline="always")
-def _jfo(t, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu, R, c, cap):
+def _jfo(t, mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, ux, uy, mu, R, c, cap, out, o):
     co, si, ebx, eby, vbx, vby = bushing_frame(q, bi, ex, ey, edx, edy, wi, c)
-    fbx, fby, content, inflow, side = jfo_force(
+    fbx, fby, content, inflow, side, gas, net = jfo_force(
         t, mem, tables, slot, ebx, eby, vbx, vby, wj - wi, mu, R, c, cap
     )
+    out[o] = content
+    out[o + 1] = inflow
+    out[o + 2] = side
+    feature_flows(tables, slot, net, out, o + 3)
     fx = co * fbx - si * fby
     fy = si * fbx + co * fby
-    return fx * ux + fy * uy, fy * ux - fx * uy, content, inflow, side
+    dmc = mu * (wj - wi) * R**4 / c * gas  # the Couette torque the gas does not carry [T375]
+    return fx * ux + fy * uy, fy * ux - fx * uy, dmc
 
 
 jfo_terms = law_gate(
@@ -116,11 +121,14 @@ jfo_terms = law_gate(
         "R",
         "c",
         "cap",
+        "out",
+        "o",
     ),
-    "(0.0, 0.0, 0.0, 0.0, 0.0)",
+    "(0.0, 0.0, 0.0)",
 )
-"""(F_r, F_t [N], content [m³], inflow, side outflow [m³/s]) of the transient jfo film of an
-element with its tables at ``slot`` [T306]"""
+"""(F_r, F_t [N], the Couette torque its gas does not carry [N·m] [T375]) of the transient jfo
+film of an element with its tables at ``slot`` [T306]; its content [m³], inflow, side outflow and
+flow per supply feature [m³/s] into out[o], out[o + 1], … [T376]"""
 
 
 @njit(inline="always")
@@ -146,11 +154,12 @@ jfo_limit = law_gate("jfo_limit", JFO_PIECE, jfo_step_limit, ("mem",), "1e300")
 def jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, De, Ded):
     """Global film force F (2,) [N] on the journal and ∂F/∂z (2, 12) for z = (q_i, q_j, q̇_i, q̇_j)
     from ∂e/∂z, ∂ė/∂z (De, Ded): the film's derivatives in the bushing frame (``jfo_jacobian``)
-    chained through e_b = Aᵀe/c, ė_b = Aᵀė/c − ω_i S e_b, ω = ω_J − ω_B and F = A F_b, and 1 if
-    the film's active set does not settle else 0 [T346]. Called only where the laws hold the jfo
-    piece (``forces.element_jacobians.film_jac_block``)."""
+    chained through e_b = Aᵀe/c, ė_b = Aᵀė/c − ω_i S e_b, ω = ω_J − ω_B and F = A F_b; the gas
+    Couette integral [-] and its ∂/∂z (12,) [T375]; 1 if the film's active set does not settle
+    else 0 [T346]. Called only where the laws hold the jfo piece
+    (``forces.element_jacobians.film_jac_block``)."""
     co, si, ebx, eby, vbx, vby = bushing_frame(q, bi, ex, ey, edx, edy, wi, c)
-    fbx, fby, J, bad = jfo_jacobian(mem, tables, slot, ebx, eby, vbx, vby, wj - wi, mu, R, c, cap)
+    fbx, fby, gas, J, bad = jfo_jacobian(mem, tables, slot, ebx, eby, vbx, vby, wj - wi, mu, R, c, cap)
     Dx = np.zeros((5, 12))  # ∂(e_b, ė_b, ω)/∂z
     for k in range(12):
         Dx[0, k] = (co * De[0, k] + si * De[1, k]) / c
@@ -166,7 +175,8 @@ def jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, D
         Dx[3, 8] -= ebx
     Dx[4, 8] -= 1.0
     Dx[4, 11] += 1.0
-    DFb = J @ Dx
+    DFb = J[:2] @ Dx
+    Dgas = J[2] @ Dx
     F = np.array([co * fbx - si * fby, si * fbx + co * fby])
     DF = np.empty((2, 12))
     for k in range(12):
@@ -175,4 +185,4 @@ def jfo_jac(mem, tables, slot, q, bi, ex, ey, edx, edy, wi, wj, mu, R, c, cap, D
     if bi >= 0:
         DF[0, 2] -= F[1]
         DF[1, 2] += F[0]
-    return F, DF, bad
+    return F, DF, gas, Dgas, bad

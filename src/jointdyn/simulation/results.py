@@ -100,12 +100,12 @@ class Results:
         return k, type(self.system.elements[k])
 
     def element(self, name: str, output: str) -> np.ndarray:
-        """Time series of output ``output`` of force element ``name`` (see the element class's
-        ``OUTPUTS``, which also gives the unit)."""
+        """Time series of output ``output`` of force element ``name`` (see the element's output
+        slots, ``forces.elements.output_slots``, which also give the unit)."""
         k, cls = self._element(name)
-        if output not in (valid := list(output_slots(self.system.elements[k]))):
+        if output not in (valid := list(output_slots(self.system.elements[k]))):  # its first slots
             raise KeyError(f"element {name!r} ({cls.__name__}) has no output {output!r}; valid: {valid}")
-        return self.eout[:, k, list(cls.OUTPUTS).index(output)]
+        return self.eout[:, k, valid.index(output)]
 
     def memory(self, name: str, slot: str) -> np.ndarray:
         """Time series of memory slot ``slot`` of force element ``name`` (see the element
@@ -242,7 +242,7 @@ class Results:
         """Tidy xarray Dataset on ``time`` [s]: one variable per body coordinate
         (``crank.x`` [m], ``crank.phi`` [rad], ``crank.x_dot`` …), per constraint row
         (``drive.lambda`` …), per element output (``piston_pin.xi`` …, names and units from the
-        element class's ``OUTPUTS``) and memory slot (``piston_pin.memory.impacts`` …, from
+        element's output slots) and memory slot (``piston_pin.memory.impacts`` …, from
         ``MEMORY``); every variable has a ``units`` attribute."""
         import xarray as xr
 
@@ -261,9 +261,8 @@ class Results:
             for r in range(lam.shape[1]):
                 v[f"{n}.lambda" + (f"[{r}]" if lam.shape[1] > 1 else "")] = (lam[:, r], lu[r])
         for k, (n, e) in enumerate(zip(s.element_names, s.elements)):
-            for j, (o, u) in enumerate(type(e).OUTPUTS.items()):
-                if o in output_slots(e):
-                    v[f"{n}.{o}"] = (self.eout[:, k, j], u)
+            for j, (o, u) in enumerate(output_slots(e).items()):  # the first slots, in order
+                v[f"{n}.{o}"] = (self.eout[:, k, j], u)
             used = _memory_slots(e)
             for j, (o, u) in enumerate(type(e).MEMORY.items()):
                 if o in used and j < self.mem.shape[-1]:
@@ -404,7 +403,7 @@ class Results:
     def _provenance(self) -> dict:
         s = self.system
         pairs = zip(s.element_names, s.elements)
-        units = {n: {"outputs": type(e).OUTPUTS, "memory": type(e).MEMORY} for n, e in pairs}
+        units = {n: {"outputs": output_slots(e), "memory": type(e).MEMORY} for n, e in pairs}
         return {
             "jointdyn_version": _version(),
             "model": json.dumps(s.model_dict, default=list),
