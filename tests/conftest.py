@@ -1,5 +1,6 @@
 import json
 import os
+import sys
 import time
 
 import pytest
@@ -14,7 +15,7 @@ def pytest_addoption(parser):
         default=None,
         help="write one JSON line per test to PREFIX-<worker>.jsonl: CPU seconds of the test's process "
         "and of its waited-for child processes, numba compile seconds, and the functions compiled "
-        "(sum them: `python tests/cpu_profile.py PREFIX`)",
+        "and the kernel sets its runs used (sum them: `python tests/cpu_profile.py PREFIX`)",
     )
 
 
@@ -44,10 +45,30 @@ class _CpuProfile:
                     profile.compile += time.process_time() - profile.t0
 
         event.register("numba:compile", _Compiles())
+        self.sets: set = set()
+        self._record_kernel_sets()
+
+    def _record_kernel_sets(self):
+        """Every compiled-driver call adds (method, exact Jacobian, type of the element kinds) —
+        the kernel set it runs [T175, T373] — to ``self.sets`` (warm or cold alike)."""
+        from numba import typeof
+
+        from jointdyn.integrators import driver
+
+        real, sets = driver.loop, self.sets
+
+        def loop(stepper, exact):
+            packed = sys._getframe(1).f_locals.get("P")  # driver.start and driver.drive call it P
+            kinds = str(typeof(packed.kinds)) if hasattr(packed, "kinds") else "?"
+            sets.add((stepper.name, int(exact) if stepper.reuse is not None else 0, kinds))
+            return real(stepper, exact)
+
+        driver.loop = loop
 
     @pytest.hookimpl(hookwrapper=True)
     def pytest_runtest_protocol(self, item, nextitem):
         t0, c0, k0, n0 = os.times(), time.process_time(), self.compile, len(self.funcs)
+        self.sets.clear()
         w0 = time.perf_counter()
         yield
         t1 = os.times()
@@ -58,6 +79,7 @@ class _CpuProfile:
             "wall": time.perf_counter() - w0,
             "compile": self.compile - k0,
             "funcs": self.funcs[n0:],
+            "sets": sorted(self.sets),
             # the process so far: start-up, collection and the tests (xdist workers may end
             # without pytest_unconfigure, so every line carries it)
             "process": t1.user + t1.system + t1.children_user + t1.children_system,

@@ -2,8 +2,9 @@
 
 ``python tests/cpu_profile.py PREFIX [N]`` prints the total CPU [s] (tests' processes and their
 waited-for children), the numba compilation inside it, the N most expensive files and tests,
-and how many (function, signature) pairs were compiled in more than one worker (work the disk
-cache did not share).
+how many (function, signature) pairs were compiled in more than one worker (work the disk
+cache did not share), and the kernel sets (method, exact Jacobian, element kinds) that only one
+test runs, with the compilation of that test: candidates for a shared set or the slow tier [T373].
 """
 
 import collections
@@ -59,6 +60,16 @@ def report(recs: list[dict], n: int = 30, process: float = 0.0) -> str:
         f"\n{len(where)} (function, signature) pairs compiled; jointdyn's compiled in more than one "
         f"worker: {len(own)}"
     )
+    users: dict = collections.defaultdict(list)
+    for r in recs:
+        for method, exact, kinds in r.get("sets", ()):
+            users[method, exact, kinds].append(r)
+    single = sorted(((k, v[0]) for k, v in users.items() if len(v) == 1), key=lambda kv: -kv[1]["compile"])
+    lines.append(
+        f"\n{len(users)} kernel sets run; {len(single)} by one test only (method, exact Jacobian, kinds):"
+    )
+    for (method, exact, kinds), r in single:
+        lines.append(f"{r['compile']:8.1f}  {r['id']}\n{'':10}{method} {exact} {kinds}")
     return "\n".join(lines)
 
 

@@ -58,13 +58,15 @@ def nrt_stats():
 def test_driver_keeps_reference_counts_balanced(nrt_stats):
     """The step loop borrows the packed system, the work arrays and the output times: after a run
     every numba allocation is freed (no leak) and the caller's arrays keep their Python reference
-    counts (nothing was released that the caller owns)."""
+    counts (nothing was released that the caller owns). RADAU5 with the exact Jacobian, simulate's
+    default (the kernel set tests/test_integrators_radau5.py compiles too [T373])."""
     system = _dry()
     P = system.packed(0.0)
     t_out = np.linspace(0.0, 0.02, 41)
     for method in (DOPRI5, RADAU5):
-        run(method, P, system.y0, system.mem0, 0.0, t_out, 1e-6, 1e-8, 0.0, np.inf, 10**6, True)  # compile
-        w = new_work(method, system.y0, system.mem0, 0.0, t_out, 0.0)
+        args = (P, system.y0, system.mem0, 0.0, t_out, 1e-6, 1e-8, 0.0, np.inf, 10**6, True)
+        run(method, *args, exact_jacobian=True)  # compile
+        w = new_work(method, system.y0, system.mem0, 0.0, t_out, 0.0, exact_jacobian=True)
         counts = [sys.getrefcount(a) for a in (*w, *P[:7], P.ws, t_out)]
         before = rtsys.get_allocation_stats()
         start(method, P, True, w)
