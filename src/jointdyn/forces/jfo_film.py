@@ -49,7 +49,8 @@ NTABLES = 7
 def pack(film, length: float, journal_radius: float, viscosity: float, clearance: float) -> list:
     """The seven (rows, 2) tables of a jfo film [T306]: (nt, nz); (cos, sin) of the cells; of the
     faces i+1/2; (cv, axial face gaps); (area, supply pressure P_f [1/s] or −1 off the supply);
-    (zig-zag order, its inverse); (supply feature of the cell, 0 … count − 1, or −1; unused) [T376]."""
+    (zig-zag order, its inverse); (supply feature of the cell, 0 … count − 1, or −1 off the supply;
+    0) [T376]."""
     R = journal_radius
     feed = film.supply_pressure * clearance**2 / (6.0 * viscosity * R * R)  # P_f [1/s] [T300]
     grooves = supply_feature(film, length, R, feed)
