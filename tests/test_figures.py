@@ -110,6 +110,21 @@ def _review(name: str, fig) -> list[str]:
             hit = (p[:, 0] > lb.x0) & (p[:, 0] < lb.x1) & (p[:, 1] > lb.y0) & (p[:, 1] < lb.y1)
             if hit.any():
                 problems.append(f"{name}: legend covers {int(hit.sum())} plotted points")
+    main = [a for a in fig.axes if a.get_label() != "<colorbar>"]
+    boxes = [a.get_tightbbox() for a in main]  # the drawn tick labels, axis labels, titles, insets
+    sup = [fig._suptitle.get_window_extent()] if fig._suptitle is not None else []
+    for b in boxes + sup:  # [T371] none of it clipped by the canvas
+        if b.x0 < canvas.x0 - 1 or b.x1 > canvas.x1 + 1 or b.y0 < canvas.y0 - 1 or b.y1 > canvas.y1 + 1:
+            problems.append(
+                f"{name}: labels cut off by the canvas ({b.x0:.0f}–{b.x1:.0f}, {b.y0:.0f}–{b.y1:.0f})"
+            )
+    for i in range(len(main)):  # stacked axes: one's decorations never run into the next one's
+        for j in range(i + 1, len(main)):
+            if boxes[i].overlaps(boxes[j]):
+                problems.append(f"{name}: axes {i} and {j} overlap (labels or titles)")
+    for lb in [lg.get_window_extent() for lg in fig.legends] + sup:  # clear of every axes' labels
+        if any(lb.overlaps(b) for b in boxes):
+            problems.append(f"{name}: a figure legend or title overlaps an axes' labels")
     for a in fig.axes:
         lines = [
             ln
