@@ -17,7 +17,7 @@ from jointdyn.models import slider_crank as sc
 from jointdyn.studies.reproduce import BEYOND_CASES, PAPER_CASES, csv_files, run_case
 from jointdyn.viz import plots, style
 from jointdyn.viz.reproduce_data import figure_data
-from jointdyn.viz.reproduce_figures import _png, draw_all
+from jointdyn.viz.reproduce_figures import PNG, _png, draw_all
 
 CASES = {c.name: c for c in PAPER_CASES + BEYOND_CASES}
 #: the main job's figure set on a short run: the four paper cases and one small-clearance case
@@ -180,7 +180,7 @@ def test_one_draw_png_is_byte_identical_to_savefig(runs):
     def emit(name, f):
         once = _png(f)
         buf = io.BytesIO()
-        f.savefig(buf, format="png", dpi=130)
+        f.savefig(buf, format="png", dpi=130, pil_kwargs=dict(PNG))
         pairs[name] = (once, buf.getvalue())
 
     try:
