@@ -315,3 +315,48 @@ def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     for name in names:
         text = caption(name.removesuffix(".png"), runs)
         assert text.endswith(".") and len(text.split()) >= 8 and name.removesuffix(".png") not in text, name
+
+
+def test_a_reused_sheet_draws_the_bytes_of_a_fresh_one():
+    """[T371] the report draws its moment and orbit figures on one axes each, emptied between
+    figures (its ticks are made once): the PNG of the second figure is the one of a fresh figure
+    (a small orbit with its inset after a large one, a large moment range after a small one)."""
+    from jointdyn.viz import column_layout, orbit
+    from jointdyn.viz.reproduce_figures import _again, _below, _sheet
+
+    th = np.linspace(0.0, 2.0 * np.pi, 400)
+    paths = [(0.02 + 0.01 * np.cos(th), 0.004 * np.sin(th)), (0.9 * np.cos(th), 0.8 * np.sin(th))]
+    moments = [1200.0 * np.sin(5 * th) - 300.0, 100.0 * np.sin(3 * th)]
+
+    def orbit_png(fig, k, reuse):
+        if reuse:
+            ax = fig.axes[0]
+            orbit.clear_paths(ax)
+            for lg in fig.legends[:]:
+                lg.remove()
+        else:
+            ax = _sheet(fig, (4.8, 5.4))
+        plots.journal_orbit(*paths[k], ax=ax, frame="bushing", color="C0", label="journal centre")
+        ax.set_title(f"orbit {k}", fontsize=9, y=1.0)
+        _below(fig)
+        column_layout.column(fig)
+        return _png(fig)
+
+    def moment_png(fig, k, reuse):
+        ax = _again(fig) if reuse else _sheet(fig, (8, 3.8))
+        plots.moment_vs_angle(th, moments[k], ax=ax, color="C1")
+        ax.set_title(f"moment {k}", fontsize=10, y=1.0)
+        column_layout.column(fig)
+        return _png(fig)
+
+    for draw in (orbit_png, moment_png):
+        one, fresh = plt.figure(dpi=130), plt.figure(dpi=130)
+        try:
+            draw(one, 0, False)
+            again = draw(one, 1, True)
+            new = draw(fresh, 1, False)
+        finally:
+            plt.close(one)
+            plt.close(fresh)
+        assert again == new, draw.__name__
+        assert len(one.axes) == 1 and len(one.legends) <= 1

@@ -30,7 +30,8 @@ def _same(a: list[np.ndarray], b: list[np.ndarray]) -> bool:
 
 def column(fig, pad: float = PAD, passes: int = 3) -> None:
     """Place the axes of ``fig`` (top to bottom in creation order, equal heights) so that each
-    one's tight bounding box (ticks, labels, title, legend, insets) lies inside the figure with
+    one's tight bounding box (ticks, labels, title, legend, insets; a title wider than its axes
+    overhangs it, as in the constrained layout) lies inside the figure with
     ``pad`` [in] between blocks, under ``fig``'s suptitle and above its legends (``loc="lower
     center"``)."""
     axes = list(fig.axes)
@@ -44,7 +45,8 @@ def column(fig, pad: float = PAD, passes: int = 3) -> None:
         margins = []
         for a in axes:
             a.apply_aspect()
-            box, tight = a.get_window_extent(renderer), a.get_tightbbox(renderer)
+            # as the constrained layout: a title's and the x label's width, the y label's height not counted
+            box, tight = a.get_window_extent(renderer), a.get_tightbbox(renderer, for_layout_only=True)
             margins.append((box.x0 - tight.x0, tight.x1 - box.x1, box.y0 - tight.y0, tight.y1 - box.y1))
         top = H - p
         if fig._suptitle is not None and fig._suptitle.get_text():
@@ -52,6 +54,11 @@ def column(fig, pad: float = PAD, passes: int = 3) -> None:
         bottom = p + max((lg.get_window_extent(renderer).y1 for lg in fig.legends), default=0.0)
         m = np.array(margins)
         left, right = m[:, 0].max() + p, W - m[:, 1].max() - p
+        # a title wider than its axes is centred on it: move the axes so that it stays on the canvas
+        w = max(a.title.get_window_extent(renderer).width if a.title.get_text() else 0.0 for a in axes)
+        if w <= W - 2 * p:
+            right = min(right, 2 * (W - p) - w - left)
+            left = max(left, 2 * p + w - right)
         h = (top - bottom - m[:, 2].sum() - m[:, 3].sum() - p * (len(axes) - 1)) / len(axes)
         if h <= 0 or right <= left:
             raise ValueError(f"figure of {fig.get_size_inches()} in: no room left for its axes")
