@@ -15,12 +15,13 @@ PAD = 3 / 72
 
 
 def _ticks(axes) -> list[np.ndarray]:
-    """The major and minor tick locations of ``axes`` and their insets (what sizes the margins)."""
+    """The major and minor tick locations of ``axes`` (what sizes the margins; an inset's tick
+    labels lie inside its parent, and the small orbits' inset ticks alternate between two sets as
+    the parent is resized, which would cost two more passes for nothing)."""
     out = []
     for a in axes:
-        for b in (a, *a.child_axes):
-            for axis in (b.xaxis, b.yaxis):
-                out += [axis.get_majorticklocs(), axis.get_minorticklocs()]
+        for axis in (a.xaxis, a.yaxis):
+            out += [axis.get_majorticklocs(), axis.get_minorticklocs()]
     return out
 
 
