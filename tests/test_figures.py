@@ -17,7 +17,7 @@ from jointdyn.models import slider_crank as sc
 from jointdyn.studies.reproduce import BEYOND_CASES, PAPER_CASES, csv_files, run_case
 from jointdyn.viz import plots, style
 from jointdyn.viz.reproduce_data import figure_data
-from jointdyn.viz.reproduce_figures import _png, draw_all
+from jointdyn.viz.reproduce_figures import PNG, _png, draw_all
 
 CASES = {c.name: c for c in PAPER_CASES + BEYOND_CASES}
 #: the main job's figure set on a short run: the four paper cases and one small-clearance case
@@ -110,6 +110,21 @@ def _review(name: str, fig) -> list[str]:
             hit = (p[:, 0] > lb.x0) & (p[:, 0] < lb.x1) & (p[:, 1] > lb.y0) & (p[:, 1] < lb.y1)
             if hit.any():
                 problems.append(f"{name}: legend covers {int(hit.sum())} plotted points")
+    main = [a for a in fig.axes if a.get_label() != "<colorbar>"]
+    boxes = [a.get_tightbbox() for a in main]  # the drawn tick labels, axis labels, titles, insets
+    sup = [fig._suptitle.get_window_extent()] if fig._suptitle is not None else []
+    for b in boxes + sup:  # [T371] none of it clipped by the canvas
+        if b.x0 < canvas.x0 - 1 or b.x1 > canvas.x1 + 1 or b.y0 < canvas.y0 - 1 or b.y1 > canvas.y1 + 1:
+            problems.append(
+                f"{name}: labels cut off by the canvas ({b.x0:.0f}–{b.x1:.0f}, {b.y0:.0f}–{b.y1:.0f})"
+            )
+    for i in range(len(main)):  # stacked axes: one's decorations never run into the next one's
+        for j in range(i + 1, len(main)):
+            if boxes[i].overlaps(boxes[j]):
+                problems.append(f"{name}: axes {i} and {j} overlap (labels or titles)")
+    for lb in [lg.get_window_extent() for lg in fig.legends] + sup:  # clear of every axes' labels
+        if any(lb.overlaps(b) for b in boxes):
+            problems.append(f"{name}: a figure legend or title overlaps an axes' labels")
     for a in fig.axes:
         lines = [
             ln
@@ -165,7 +180,7 @@ def test_one_draw_png_is_byte_identical_to_savefig(runs):
     def emit(name, f):
         once = _png(f)
         buf = io.BytesIO()
-        f.savefig(buf, format="png", dpi=130)
+        f.savefig(buf, format="png", dpi=130, pil_kwargs=dict(PNG))
         pairs[name] = (once, buf.getvalue())
 
     try:
@@ -300,3 +315,48 @@ def test_interactive_page_and_captions_match_the_pngs(runs, tmp_path):
     for name in names:
         text = caption(name.removesuffix(".png"), runs)
         assert text.endswith(".") and len(text.split()) >= 8 and name.removesuffix(".png") not in text, name
+
+
+def test_a_reused_sheet_draws_the_bytes_of_a_fresh_one():
+    """[T371] the report draws its moment and orbit figures on one axes each, emptied between
+    figures (its ticks are made once): the PNG of the second figure is the one of a fresh figure
+    (a small orbit with its inset after a large one, a large moment range after a small one)."""
+    from jointdyn.viz import column_layout, orbit
+    from jointdyn.viz.reproduce_figures import _again, _below, _sheet
+
+    th = np.linspace(0.0, 2.0 * np.pi, 400)
+    paths = [(0.02 + 0.01 * np.cos(th), 0.004 * np.sin(th)), (0.9 * np.cos(th), 0.8 * np.sin(th))]
+    moments = [1200.0 * np.sin(5 * th) - 300.0, 100.0 * np.sin(3 * th)]
+
+    def orbit_png(fig, k, reuse):
+        if reuse:
+            ax = fig.axes[0]
+            orbit.clear_paths(ax)
+            for lg in fig.legends[:]:
+                lg.remove()
+        else:
+            ax = _sheet(fig, (4.8, 5.4))
+        plots.journal_orbit(*paths[k], ax=ax, frame="bushing", color="C0", label="journal centre")
+        ax.set_title(f"orbit {k}", fontsize=9, y=1.0)
+        _below(fig)
+        column_layout.column(fig)
+        return _png(fig)
+
+    def moment_png(fig, k, reuse):
+        ax = _again(fig) if reuse else _sheet(fig, (8, 3.8))
+        plots.moment_vs_angle(th, moments[k], ax=ax, color="C1")
+        ax.set_title(f"moment {k}", fontsize=10, y=1.0)
+        column_layout.column(fig)
+        return _png(fig)
+
+    for draw in (orbit_png, moment_png):
+        one, fresh = plt.figure(dpi=130), plt.figure(dpi=130)
+        try:
+            draw(one, 0, False)
+            again = draw(one, 1, True)
+            new = draw(fresh, 1, False)
+        finally:
+            plt.close(one)
+            plt.close(fresh)
+        assert again == new, draw.__name__
+        assert len(one.axes) == 1 and len(one.legends) <= 1

@@ -84,10 +84,11 @@ def _builder_hash(cavitation: str = DEFAULT_CAVITATION) -> str:
     cavitation registry and the module of the condition's class): any change of the builder
     invalidates the cached tables [T80, T88]."""
     from jointdyn.film import cavitation as cv
-    from jointdyn.film import fv, lcp
+    from jointdyn.film import fv
 
     h = hashlib.sha1()
-    files = [Path(__file__), Path(fv.__file__), Path(lcp.__file__), Path(cv.__file__)]
+    lcp = Path(__file__).with_name("lcp.py")  # by name: importing it loads scipy.sparse [T372]
+    files = [Path(__file__), Path(fv.__file__), lcp, Path(cv.__file__)]
     src = cv.source_file(cavitation)
     if src is not None and src.is_file() and src not in files:
         files.append(src)

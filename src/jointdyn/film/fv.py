@@ -16,9 +16,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.sparse import csr_matrix
+
+if TYPE_CHECKING:  # scipy.sparse (≈ 0.1 s to import) only where a film is assembled [T372]
+    from scipy.sparse import csr_matrix
 
 #: default mesh: cells around the circumference, cells on the half length [-]
 DEFAULT_MESH = (144, 16)
@@ -164,6 +167,8 @@ def assemble(
     rows.append(k.ravel())
     cols.append(k.ravel())
     vals.append(diag.ravel())
+    from scipy.sparse import csr_matrix
+
     N = nt * nz
     M = csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(N, N))
     area = (ds * dth)[:, None] * cv[None, :]

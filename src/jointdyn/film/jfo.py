@@ -19,10 +19,12 @@ largest Couette flux, and max |min(P, 1 − θ_f)| relative to max P [T243].
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-from scipy.sparse import csc_matrix, csr_matrix, diags
-from scipy.sparse.linalg import splu
+
+if TYPE_CHECKING:  # scipy.sparse (≈ 0.2 s to import with its linalg) only where a film is solved [T372]
+    from scipy.sparse import csr_matrix
 
 
 def transport(prob, A: float, B: float, omega=None) -> csr_matrix:
@@ -49,6 +51,8 @@ def transport(prob, A: float, B: float, omega=None) -> csr_matrix:
     rows = np.concatenate([k, k, k])
     cols = np.concatenate([up_out, up_in, k])
     vals = np.concatenate([c_out, c_in, sq])
+    from scipy.sparse import csr_matrix
+
     N = nt * nz
     return csr_matrix((vals, (rows, cols)), shape=(N, N))
 
@@ -64,6 +68,9 @@ def solve_jfo(prob, A: float, B: float, fixed, pfix=None, cavitated=None, max_it
             "cavitation = 'jfo': needs a lubricant supply (a feed line or grooves); "
             "the periodic (transient) jfo film is not available"
         )
+    from scipy.sparse import csc_matrix, csr_matrix, diags
+    from scipy.sparse.linalg import splu
+
     fx = np.asarray(fixed, bool)
     pf = np.zeros(N) if pfix is None else np.where(fx, np.asarray(pfix, float), 0.0)
     M = csr_matrix(prob.M)
@@ -102,6 +109,8 @@ def solve_jfo(prob, A: float, B: float, fixed, pfix=None, cavitated=None, max_it
 
 def cell_balance(prob, A: float, B: float, P: np.ndarray, fill: np.ndarray, omega=None) -> np.ndarray:
     """Net outflow of every cell (N,) [-] for the field (P, θ_f) [T241]: 0 at solved cells."""
+    from scipy.sparse import csr_matrix
+
     return csr_matrix(prob.M) @ P + transport(prob, A, B, omega) @ fill
 
 
@@ -121,6 +130,8 @@ def flows(prob, A: float, B: float, P: np.ndarray, fill: np.ndarray, fixed: np.n
     (N,) numbering the grooves, −1 elsewhere), ``side`` Poiseuille outflow through both ends,
     ``squeeze`` the content change rate Σ 2ξ̇cos·area·θ_f, ``content`` the film content
     Σ H θ_f·area (both halves) and ``imbalance`` = supply − side − squeeze (round-off)."""
+    from scipy.sparse import csr_matrix
+
     out = 2.0 * cell_balance(prob, A, B, P, fill)
     nt, nz = prob.shape
     MP = csr_matrix(prob.M) @ P

@@ -20,8 +20,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.sparse import csc_matrix, csr_matrix, diags
-from scipy.sparse.linalg import splu
 
 from jointdyn.core import interrupts
 from jointdyn.film.fv import assemble, check_ld
@@ -88,6 +86,9 @@ class TransientFilm:
             raise ValueError(f"dt = {dt!r} [s]: must be > 0")
         if not math.hypot(e[0], e[1]) < 1.0:
             raise ValueError(f"journal position |e|/c = {math.hypot(e[0], e[1])!r} [-]: must be < 1")
+        from scipy.sparse import csc_matrix, diags  # imported where used: [T372]
+        from scipy.sparse.linalg import splu
+
         prob, H = self.film(e)
         N = H.size
         M = csc_matrix(prob.M)
@@ -161,6 +162,8 @@ class TransientFilm:
 
     def residual(self, s: Step, e, omega, dt, content0) -> float:
         """Largest imbalance of a non-supply cell relative to the largest cell flux [-] [T301]."""
+        from scipy.sparse import csr_matrix, diags
+
         prob, H = self.film(e)
         T = transport(prob, 0.0, 0.0, omega) + diags(2.0 * prob.area * H / dt)
         b0 = 2.0 * prob.area * np.asarray(content0, float) / dt

@@ -135,8 +135,8 @@ def _js(obj) -> str:
     (the page draws gaps there, as plotly does), and no ``</`` that could end the script tag."""
 
     def plain(o):
-        if isinstance(o, np.ndarray):
-            return [plain(v) for v in o.tolist()]
+        if isinstance(o, np.ndarray):  # Python floats and ints (nested lists) at once [T372]
+            return o.tolist()
         if isinstance(o, dict):
             return {k: plain(v) for k, v in o.items()}
         if isinstance(o, list | tuple):

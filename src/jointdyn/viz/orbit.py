@@ -102,6 +102,19 @@ def journal_orbit(
     return ax
 
 
+def clear_paths(ax) -> None:
+    """Empty an orbit axes of :func:`journal_orbit` for another path: the clearance circle, the
+    ticks and labels stay; the paths, their marks, the inset and its zoom box go (a report draws
+    nine orbits on one axes: its ticks are made once, [T371])."""
+    keep = ax.lines[0] if getattr(ax, "_jd_circle", False) else None
+    for a in [*ax.lines, *ax.patches, *ax.child_axes]:
+        if a is not keep:
+            a.remove()
+    for name in ("_jd_marks", "_jd_inset", "_jd_zoom_marks"):
+        if hasattr(ax, name):
+            delattr(ax, name)
+
+
 def _zoom(ax, ex, ey, line, marks: bool, lw, kw) -> None:
     """Draw a small orbit again in an inset of ``ax`` (one inset per axes, limits the union of
     its paths, the zoomed square marked on the main axes)."""

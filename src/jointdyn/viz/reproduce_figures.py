@@ -18,13 +18,18 @@ from pathlib import Path
 
 import numpy as np
 
-from jointdyn.viz import plots, style
+from jointdyn.viz import column_layout, orbit, plots, style
+
+#: resolution of the report's PNGs [dots/in]
+DPI = 130
+#: zlib level of the report's PNGs: 3 encodes the 17 figures in 0.25 instead of 0.36 s CPU (level 6,
+#: Pillow's default) for 3 % more bytes; levels 1–2 are no faster [T371]
+PNG = {"compress_level": 3}
 
 
-def _png(fig, dpi: float = 130) -> bytes:
-    """``fig`` as PNG bytes at ``dpi``, drawn once [T320]: ``savefig`` with a layout engine draws
-    twice (a layout pass, then the picture); one ``canvas.draw`` runs the constrained layout and
-    renders, and the bytes are identical to ``fig.savefig(buf, format="png", dpi=dpi)``."""
+def _png(fig, dpi: float = DPI) -> bytes:
+    """``fig`` as PNG bytes at ``dpi``, drawn once [T320] (laid out beforehand, [T371]); the bytes
+    are identical to ``fig.savefig(buf, format="png", dpi=dpi, pil_kwargs=PNG)``."""
     import matplotlib
     from matplotlib import image
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -37,7 +42,13 @@ def _png(fig, dpi: float = 130) -> bytes:
         buf = io.BytesIO()
         software = f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/"
         image.imsave(
-            buf, canvas.buffer_rgba(), format="png", origin="upper", dpi=dpi, metadata={"Software": software}
+            buf,
+            canvas.buffer_rgba(),
+            format="png",
+            origin="upper",
+            dpi=dpi,
+            metadata={"Software": software},
+            pil_kwargs=dict(PNG),
         )
     finally:
         fig.dpi = old
@@ -54,12 +65,29 @@ def _styles(names) -> dict[str, tuple[str, str]]:
 
 def _sheet(fig, size, *grid, **kw):
     """The report's one figure, cleared and resized to ``size`` [in], with new subplots, laid
-    out by matplotlib's constrained layout (legends outside the axes get their room); a new
-    Figure per plot kept ≈ 3 MB each in matplotlib's native text caches, [T173]."""
+    out by :func:`jointdyn.viz.column_layout.column` before it is emitted; a new Figure per plot kept
+    ≈ 3 MB each in matplotlib's native text caches, [T173]."""
     fig.clf()
-    fig.set_layout_engine("constrained")
+    fig.set_layout_engine("none")
     fig.set_size_inches(*size)
     return fig.subplots(*grid, **kw)
+
+
+def _again(fig):
+    """The sheet's one axes, emptied for the next figure of the same kind (same size, labels and
+    tick locators): its axis and tick objects are kept, which are ≈ 40 % of the cost of building a
+    simple figure [T371]; its data limits start afresh."""
+    (ax,) = fig.axes
+    for a in [*ax.lines, *ax.patches, *ax.child_axes, *fig.legends]:
+        a.remove()
+    ax.relim()
+    return ax
+
+
+def _title(ax, text: str, fontsize: float) -> None:
+    """The title of ``ax`` at its top edge (``y=1``): matplotlib then skips moving it above
+    top tick labels, which would cost a tight box of every axis at each draw [T371]."""
+    ax.set_title(text, fontsize=fontsize, y=1.0)
 
 
 def figures(data: dict, revs: float) -> dict[str, bytes]:
@@ -70,10 +98,10 @@ def figures(data: dict, revs: float) -> dict[str, bytes]:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig = plt.figure()
+    fig = plt.figure(dpi=DPI)  # measured and drawn at the PNG's resolution: one renderer [T371]
     out: dict[str, bytes] = {}
     try:
-        draw_all(fig, data, revs, lambda name, f: out.__setitem__(name, _png(f)))
+        draw_all(fig, data, revs, lambda name, f: out.__setitem__(name, _png(f, DPI)))
         return out
     finally:
         plt.close(fig)
@@ -164,10 +192,10 @@ def _below(fig, ncol: int = 2):
             if lab not in labels:
                 handles.append(h)
                 labels.append(lab)
-    lg = fig.legend(handles, labels, loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
+    lg = fig.legend(handles, labels, loc="lower center", ncol=ncol, fontsize=8, frameon=False)
     if ncol > 1 and lg.get_window_extent(fig.canvas.get_renderer()).width > 0.98 * fig.bbox.width:
         lg.remove()
-        fig.legend(handles, labels, loc="outside lower center", ncol=1, fontsize=8, frameon=False)
+        fig.legend(handles, labels, loc="lower center", ncol=1, fontsize=8, frameon=False)
 
 
 def _coincident(curves: dict, tol: float = 0.02) -> dict[str, str]:
@@ -213,16 +241,26 @@ def caption(name: str, runs: dict) -> str:
     return name
 
 
+def _laid_out(emit):
+    def out(name: str, fig) -> None:
+        column_layout.column(fig)
+        emit(name, fig)
+
+    return out
+
+
 def draw_all(fig, data: dict, revs: float, emit) -> None:
     """Draw every report figure of ``data`` (:func:`~jointdyn.viz.reproduce_data.figure_data`) on
-    ``fig`` in turn; ``emit(file name, fig)`` is called after each."""
+    ``fig`` in turn; ``emit(file name, fig)`` is called after each, laid out
+    (:func:`jointdyn.viz.column_layout.column`)."""
+    emit = _laid_out(emit)
     st = _styles(data)
     names = [n for n in PAPER if n in data]
     one = "last revolution" if revs >= 1 else f"{revs:g} revolution"
-    for n in names:
-        ax = _sheet(fig, (8, 3.8))
+    for k, n in enumerate(names):
+        ax = _again(fig) if k else _sheet(fig, (8, 3.8))
         plots.moment_vs_angle(data[n]["angle_all"], data[n]["moment_all"], ax=ax, color=st[n][0])
-        ax.set_title(f"crank driving moment, {revs:g} revolutions — {data[n]['label']}", fontsize=10)
+        _title(ax, f"crank driving moment, {revs:g} revolutions — {data[n]['label']}", fontsize=10)
         emit(f"moment_{n}.png", fig)
     # overlay: smooth cases on their own scale, the dry joint's spikes in a panel of their own
     smooth = [n for n in names if n != "dry"]
@@ -231,12 +269,12 @@ def draw_all(fig, data: dict, revs: float, emit) -> None:
     for n in smooth:
         wide = n == "perfect"
         _moment(axs[0, 0], data[n], st[n], lw=1.8 if wide else 1.2, zorder=3 if wide else 2)
-    axs[0, 0].set_title(f"crank driving moment, {one}", fontsize=10)
+    _title(axs[0, 0], f"crank driving moment, {one}", fontsize=10)
     if panels == 2:
         for n in ("perfect", "dry"):
             if n in data:
                 _moment(axs[1, 0], data[n], st[n], lw=1.0, zorder=3 if n == "perfect" else 2)
-        axs[1, 0].set_title("dry clearance joint (own scale: impact spikes)", fontsize=10)
+        _title(axs[1, 0], "dry clearance joint (own scale: impact spikes)", fontsize=10)
     for ax in axs[:, 0]:
         ax.set_ylabel("moment [N·m]")
         ax.grid(True, alpha=0.3)
@@ -249,18 +287,24 @@ def draw_all(fig, data: dict, revs: float, emit) -> None:
         for n in ["perfect"] + beyond if "perfect" in data else beyond:
             wide = n == "perfect"
             _moment(ax, data[n], st[n], lw=1.4 if wide else 1.1, zorder=3 if wide else 2)
-        ax.set_title(f"beyond the paper: clearance, viscosity, finite length, shear ({one})", fontsize=10)
+        _title(ax, f"beyond the paper: clearance, viscosity, finite length, shear ({one})", fontsize=10)
         ax.set_ylabel("moment [N·m]")
         _angle_axis(ax, revs, one)
         ax.grid(True, alpha=0.3)
         _below(fig)
         emit("moment_beyond.png", fig)
-    for n in [n for n in data if "ex" in data[n]]:
-        ax = _sheet(fig, (4.8, 5.4))
+    for k, n in enumerate([n for n in data if "ex" in data[n]]):
+        if k:
+            ax = fig.axes[0]
+            orbit.clear_paths(ax)
+            for lg in fig.legends[:]:
+                lg.remove()
+        else:
+            ax = _sheet(fig, (4.8, 5.4))
         ex, ey = data[n]["ex"], data[n]["ey"]
         plots.journal_orbit(ex, ey, ax=ax, frame="bushing (rod-eye)", color=st[n][0], label="journal centre")
-        ax.set_title(f"journal centre path in the bushing frame, {one}\n{data[n]['label']}", fontsize=9)
-        style.legend_below(ax, ncol=2, y=-0.13)
+        _title(ax, f"journal centre path in the bushing frame, {one}\n{data[n]['label']}", fontsize=9)
+        _below(fig)
         emit(f"orbit_{n}.png", fig)
     _film(fig, data, st, one, emit)
     _joint_force(fig, data, names, st, revs, one, emit)
@@ -291,7 +335,7 @@ def _film(fig, data, st, one, emit) -> None:
 
     ax.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
     ax.set_xlabel(f"crank angle [deg], {one}")
-    ax.set_title(f"minimum film thickness, {one}", fontsize=10)
+    _title(ax, f"minimum film thickness, {one}", fontsize=10)
     _below(fig)
     emit("film_thickness.png", fig)
 
@@ -318,7 +362,7 @@ def _joint_force(fig, data, names, st, revs, one, emit) -> None:
             )
         title = f"{data[n]['label']}\nthis window: largest sample {f[i] / 1e3:.3g} kN at {x[i]:.0f}°\n"
         title += data[n]["record"]
-        ax.set_title(title, fontsize=8)
+        _title(ax, title, fontsize=8)
         ax.set_ylabel("|F| [N]")
         ax.grid(True, alpha=0.3)
     _angle_axis(axs[-1, 0], revs, one)
