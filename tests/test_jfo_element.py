@@ -11,6 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fd_reference import element_jacobian_error
 
 from jointdyn.film.models import Finite
 from jointdyn.forces.journal import JournalBearing
@@ -93,40 +94,14 @@ def test_element_jacobian_matches_central_differences_of_the_element(run):
     differences of the whole element's generalised force (steps 1e-8 m or rad, 1e-4 m/s or
     rad/s) at states of the run whose film has ruptured, with the run's committed contents.
     Measured: ≤ 1.3e-8; the fallback it replaced [T100] (step 6e-6·|q|) is off by ≤ 3.5e-5 here."""
-    from jointdyn.forces.element_jacobians import _element_q, force_jacobian
-    from jointdyn.forces.elements import NOUT, kinds_of
-
     model, _ = load_model(EXAMPLE)
     s = model.compile()
-    P = s.packed()
-    kinds = kinds_of(s.fint)
-    n = s.n
-    k = s.element_names.index("piston_pin")
 
-    def Q(t, q, qd, mem):
-        out = np.zeros(n)
-        _element_q(t, q, qd, mem, P.fint, P.freal, P.tables, k, out, np.zeros((1, NOUT)), kinds)
-        return out
-
-    worst = 0.0
-    for i in (10, 20, 30):
-        y, mem, t = np.asarray(run.y[i]), np.ascontiguousarray(run.mem[i]), float(run.t[i])
+    def check(Q, t, q, qd, mem):
         assert mem.shape == s.mem0.shape  # the full rows: the cells and e_n
-        q, qd = y[:n].copy(), y[n:].copy()
-        dq, dqd, dt = np.empty((n, n)), np.empty((n, n)), np.empty(n)
-        assert force_jacobian(t, q, qd, mem, P.fint, P.freal, P.tables, dq, dqd, dt, kinds) == 0
-        for exact, base, h, which in ((dq, q, 1e-8, 0), (dqd, qd, 1e-4, 1)):
-            ref = np.empty((n, n))
-            for j in range(n):
-                a, b = base.copy(), base.copy()
-                a[j] += h
-                b[j] -= h
-                qa, qb = (a, b) if which == 0 else (q, q)
-                va, vb = (qd, qd) if which == 0 else (a, b)
-                ref[:, j] = (Q(t, qa, va, mem) - Q(t, qb, vb, mem)) / (2.0 * h)
-            worst = max(worst, float(np.abs(exact - ref).max() / np.abs(ref).max()))
         assert np.array_equal(Q(t, q, qd, mem), Q(t + 1e-5, q, qd, mem))  # no stage time [T345]
-    assert worst < 1e-6
+
+    assert element_jacobian_error(s, run, "piston_pin", check=check) < 1e-6
 
 
 def test_flow_per_supply_feature_in_the_outputs(tmp_path):

@@ -12,6 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from fd_reference import element_jacobian_error
 
 from jointdyn.film.slider import pocketed_slider, slider_exact, slider_friction, solve_slider
 
@@ -184,37 +185,8 @@ def test_element_jacobian_with_the_gas_shear(run):
     [T375]: the rows of the torques on bushing and journal equal central differences of the
     element's generalised force (steps 1e-8 m or rad, 1e-4 m/s or rad/s) at cavitated samples
     (measured 8.8e-9 of their largest entry; without the gas term's derivatives 9.5e-6)."""
-    from jointdyn.forces.element_jacobians import _element_q, force_jacobian
-    from jointdyn.forces.elements import NOUT, kinds_of
-
     s = run.system
-    P = s.packed()
-    kinds = kinds_of(s.fint)
-    n = s.n
-    k = s.element_names.index("piston_pin")
-
-    def Q(t, q, qd, mem):
-        out = np.zeros(n)
-        _element_q(t, q, qd, mem, P.fint, P.freal, P.tables, k, out, np.zeros((1, NOUT)), kinds)
-        return out
-
-    bi = s.body_index(s.elements[k].body_i)
-    bj = s.body_index(s.elements[k].body_j)
+    pin = s.elements[s.element_names.index("piston_pin")]
+    bi, bj = s.body_index(pin.body_i), s.body_index(pin.body_j)
     rows = [3 * bi + 2, 3 * bj + 2]  # the torques on bushing and journal
-    worst = 0.0
-    for i in (10, 20, 30):
-        y, mem, t = np.asarray(run.y[i]), np.ascontiguousarray(run.mem[i]), float(run.t[i])
-        q, qd = y[:n].copy(), y[n:].copy()
-        dq, dqd, dt = np.empty((n, n)), np.empty((n, n)), np.empty(n)
-        assert force_jacobian(t, q, qd, mem, P.fint, P.freal, P.tables, dq, dqd, dt, kinds) == 0
-        for exact, base, h, which in ((dq, q, 1e-8, 0), (dqd, qd, 1e-4, 1)):
-            ref = np.empty((n, n))
-            for j in range(n):
-                a, b = base.copy(), base.copy()
-                a[j] += h
-                b[j] -= h
-                qa, qb = (a, b) if which == 0 else (q, q)
-                va, vb = (qd, qd) if which == 0 else (a, b)
-                ref[:, j] = (Q(t, qa, va, mem) - Q(t, qb, vb, mem)) / (2.0 * h)
-            worst = max(worst, float(np.abs(exact[rows] - ref[rows]).max() / np.abs(ref[rows]).max()))
-    assert worst < 1e-6
+    assert element_jacobian_error(s, run, "piston_pin", rows=rows) < 1e-6
