@@ -321,21 +321,15 @@ def test_a_reused_sheet_draws_the_bytes_of_a_fresh_one():
     """[T371] the report draws its moment and orbit figures on one axes each, emptied between
     figures (its ticks are made once): the PNG of the second figure is the one of a fresh figure
     (a small orbit with its inset after a large one, a large moment range after a small one)."""
-    from jointdyn.viz import column_layout, orbit
-    from jointdyn.viz.reproduce_figures import _again, _below, _sheet
+    from jointdyn.viz import column_layout
+    from jointdyn.viz.reproduce_figures import _again, _below, _orbit_sheet, _sheet
 
     th = np.linspace(0.0, 2.0 * np.pi, 400)
     paths = [(0.02 + 0.01 * np.cos(th), 0.004 * np.sin(th)), (0.9 * np.cos(th), 0.8 * np.sin(th))]
     moments = [1200.0 * np.sin(5 * th) - 300.0, 100.0 * np.sin(3 * th)]
 
     def orbit_png(fig, k, reuse):
-        if reuse:
-            ax = fig.axes[0]
-            orbit.clear_paths(ax)
-            for lg in fig.legends[:]:
-                lg.remove()
-        else:
-            ax = _sheet(fig, (4.8, 5.4))
+        ax = _orbit_sheet(fig, reuse)
         plots.journal_orbit(*paths[k], ax=ax, frame="bushing", color="C0", label="journal centre")
         ax.set_title(f"orbit {k}", fontsize=9, y=1.0)
         _below(fig)

@@ -84,6 +84,18 @@ def _again(fig):
     return ax
 
 
+def _orbit_sheet(fig, reuse: bool):
+    """The sheet's axes for an orbit: the last orbit's emptied (paths and figure legends removed,
+    [T371]) or, for the first, a new 4.8 × 5.4 in sheet."""
+    if not reuse:
+        return _sheet(fig, (4.8, 5.4))
+    ax = fig.axes[0]
+    orbit.clear_paths(ax)
+    for lg in fig.legends[:]:
+        lg.remove()
+    return ax
+
+
 def _title(ax, text: str, fontsize: float) -> None:
     """The title of ``ax`` at its top edge (``y=1``): matplotlib then skips moving it above
     top tick labels, which would cost a tight box of every axis at each draw [T371]."""
@@ -294,13 +306,7 @@ def draw_all(fig, data: dict, revs: float, emit) -> None:
         _below(fig)
         emit("moment_beyond.png", fig)
     for k, n in enumerate([n for n in data if "ex" in data[n]]):
-        if k:
-            ax = fig.axes[0]
-            orbit.clear_paths(ax)
-            for lg in fig.legends[:]:
-                lg.remove()
-        else:
-            ax = _sheet(fig, (4.8, 5.4))
+        ax = _orbit_sheet(fig, reuse=k > 0)
         ex, ey = data[n]["ex"], data[n]["ey"]
         plots.journal_orbit(ex, ey, ax=ax, frame="bushing (rod-eye)", color=st[n][0], label="journal centre")
         _title(ax, f"journal centre path in the bushing frame, {one}\n{data[n]['label']}", fontsize=9)
