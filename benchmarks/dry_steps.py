@@ -27,9 +27,14 @@ import numpy as np
 from numba import njit
 
 from jointdyn.core.borrowed import borrowed
-from jointdyn.forces.contact_events import onset_limit, refine_peaks
-from jointdyn.forces.elements import advance_memory, onset_fraction, step_limit
 from jointdyn.forces.journal import IN_CONTACT
+from jointdyn.forces.kernel_set import (
+    call_memory,
+    call_onset_fraction,
+    call_onset_limit,
+    call_refine_peaks,
+    call_step_limit,
+)
 from jointdyn.integrators.common import error_norm
 from jointdyn.integrators.dopri5 import DOPRI5
 from jointdyn.integrators.driver import RUNNING, T, drive, new_work, start
@@ -91,14 +96,14 @@ def _piece_loop(piece: int):
                 y[:] = y1  # the projection of the same unprojected state every call
                 acc += project(t + h, y, P, 1e-12)
             elif piece == 2:
-                acc += step_limit(y[:n], y[n:], mem, P.fint, P.freal, P.kinds)
-                acc += onset_limit(y[:n], y[n:], f[n:], mem, P.fint, P.freal, P.kinds)
+                acc += call_step_limit(P.kernels, (y[:n], y[n:], mem, P.fint, P.freal))
+                acc += call_onset_limit(P.kernels, (y[:n], y[n:], f[n:], mem, P.fint, P.freal))
             elif piece == 3:
-                acc += onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal, P.kinds)
+                acc += call_onset_fraction(P.kernels, (y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal))
             elif piece == 4:
-                refine_peaks(y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal, P.kinds)
+                call_refine_peaks(P.kernels, (y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal))
             elif piece == 5:
-                acc += advance_memory(t + h, y1[:n], y1[n:], mem, P.fint, P.freal, P.tables, P.kinds)
+                acc += call_memory(P.kernels, (t + h, y1[:n], y1[n:], mem, P.fint, P.freal, P.tables))
             else:
                 acc += rhs(t, y0, mem0, P0, f0)
         return acc

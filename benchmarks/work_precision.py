@@ -229,7 +229,9 @@ def main(argv=None):
         Mr, ref_err = reference(system)
         mid = simulate(system, _config("radau5", 1e-8))  # a state inside the run (e ≠ 0)
         k = len(mid.t) // 2
-        c_rhs, c_jac, c_lu, c_sol = _costs(system.packed(0.0), mid.y[k].copy(), mid.mem[k].copy(), 20_000)
+        c_rhs, c_jac, c_lu, c_sol = _costs(
+            system.packed(0.0, jacobian=True), mid.y[k].copy(), mid.mem[k].copy(), 20_000
+        )
         rows = []
         for solver in a.solvers.split(","):
             for rtol in ladder[solver]:

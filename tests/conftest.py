@@ -53,13 +53,14 @@ class _CpuProfile:
         the kernel set it runs [T175, T373] — to ``self.sets`` (warm or cold alike)."""
         from numba import typeof
 
+        from jointdyn.forces.kernel_set import kernel_kinds
         from jointdyn.integrators import driver
 
         real, sets = driver.loop, self.sets
 
         def loop(stepper, exact):
             packed = sys._getframe(1).f_locals.get("P")  # driver.start and driver.drive call it P
-            kinds = str(typeof(packed.kinds)) if hasattr(packed, "kinds") else "?"
+            kinds = str(typeof(kernel_kinds(packed.kernels))) if hasattr(packed, "kernels") else "?"
             sets.add((stepper.name, int(exact) if stepper.reuse is not None else 0, kinds))
             return real(stepper, exact)
 

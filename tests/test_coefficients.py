@@ -246,7 +246,7 @@ def test_system_jacobian_of_a_rotor_on_the_bearing_gives_the_coefficients(model,
     )
     m.add("brg", JournalBearing("ground", "O", "rotor", "C", R + c, R, L, mu, film=model))
     s = m.compile(centre_imperfect=False)
-    P = s.packed(0.0)
+    P = s.packed(0.0, jacobian=True)
     y = s.y0.copy()
     nn = y.size
     Jm = np.empty((nn, nn))

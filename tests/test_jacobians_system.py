@@ -102,7 +102,7 @@ def column_error(Ja, Jf, skip=()):
 
 
 def check(system, t_end, n_states=12, baumgarte=0.0, seed=0, vel_step=0.1, solver="auto"):
-    P = system.packed(baumgarte)
+    P = system.packed(baumgarte, jacobian=True)
     nn = system.y0.shape[0]
     rng = np.random.default_rng(seed)
     worst = 0.0
@@ -158,7 +158,7 @@ def test_slider_crank_with_shear_torques(bushing):
 
 def test_dry_joint_states_in_contact_are_covered():
     system = slider_crank("dry").compile()
-    P = system.packed(0.0)
+    P = system.packed(0.0, jacobian=True)
     pts = states(system, 60, np.random.default_rng(1), REV)
     inside = [s for s in pts if s[2][0, 0] > 0.5]
     assert len(inside) >= 3  # the dry joint is in contact at some sampled states
@@ -294,7 +294,7 @@ def test_scratch_array_of_the_integrators_gives_the_same_jacobian():
     from jointdyn.multibody.jacobian import jacobian_work_size, system_jacobian_into
 
     system = slider_crank("alshaer2005").compile()
-    P = system.packed(0.0)
+    P = system.packed(0.0, jacobian=True)
     nn = system.y0.shape[0]
     size = jacobian_work_size(system.n, system.n_rows, system.fint.shape[0])
     for t, y, mem in states(system, 4, np.random.default_rng(3), REV):
@@ -313,7 +313,7 @@ def test_jacobian_accelerations_are_the_right_hand_side(joint):
     from jointdyn.multibody.jacobian import jacobian_work_size, system_jacobian_into
 
     system = slider_crank(joint).compile()
-    P = system.packed(0.0)
+    P = system.packed(0.0, jacobian=True)
     nn = system.y0.shape[0]
     n = nn // 2
     jw = np.empty(jacobian_work_size(n, system.n_rows, system.fint.shape[0]))

@@ -41,10 +41,10 @@ def steady_element_force(xi, gamma, mesh, width):
     mem = s.mem0.copy()
     dt = 2e-3
     for k in range(int(30 * 2 * math.pi / OMEGA / dt) + 1):
-        assert advance_memory(k * dt, q, qd, mem, P.fint, P.freal, P.tables, P.kinds) == 0
+        assert advance_memory(k * dt, q, qd, mem, P.fint, P.freal, P.tables, s.kinds()) == 0
     Q = np.zeros(n)
     out = np.zeros((1, NOUT))
-    eval_forces(k * dt, q, qd, mem, P.fint, P.freal, P.tables, Q, out, P.kinds)  # Δt = 0: frozen content
+    eval_forces(k * dt, q, qd, mem, P.fint, P.freal, P.tables, Q, out, s.kinds())  # Δt = 0: frozen content
     return np.array([Q[0], Q[1]]), out, (q, qd, mem, P, k * dt)
 
 

@@ -352,3 +352,36 @@ def element_tables(elements, body_index, point_of):
     for i, t in enumerate(tabs):
         tables[i, : t.shape[0]] = t
     return fint, freal, tables, mem0
+
+
+@njit(inline="always")
+def _film_gap(q, qd, fint, freal, rtol, atol, qsc):
+    for k in range(fint.shape[0]):
+        if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] != _NO_CONTACT:
+            continue
+        bi, bj = fint[k, BODY_I], fint[k, BODY_J]
+        d0, _ = penetration(q, qd, bi, bj, freal[k])
+        qp = q.copy()
+        spread = 0.0
+        for j in range(q.shape[0]):
+            s = qsc[j] if j < qsc.shape[0] and qsc[j] > 0.0 else abs(q[j])
+            qp[j] = q[j] + (atol + rtol * s)
+            d1, _ = penetration(qp, qd, bi, bj, freal[k])
+            spread += abs(d1 - d0)
+            qp[j] = q[j]
+        if -d0 <= spread:
+            return FILM_BREAKDOWN + k
+    return 0
+
+
+_film_gap_gate = kind_gate(  # without journals: 0, nothing compiled [T175]
+    "film_gap_gate", JOURNAL, _film_gap, ("q", "qd", "fint", "freal", "rtol", "atol", "qsc"), "0"
+)
+
+
+@njit(cache=True)
+def film_gap_rows(q, qd, fint, freal, rtol, atol, qsc, kinds=None):
+    """0, or FILM_BREAKDOWN + k for the first journal bearing without a contact law whose film
+    is thinner than the change of |e| a state error at the tolerances can make [T115]
+    (``integrators.accuracy.film_gap_unresolved``). ``kinds`` as in :func:`eval_forces`."""
+    return _film_gap_gate(kinds, q, qd, fint, freal, rtol, atol, qsc)

@@ -17,10 +17,10 @@ over the present codes only. The absent kinds are never typed, lowered or optimi
 The machinery (generated ``@overload`` functions) is :mod:`jointdyn.core.dispatch`, shared with
 the law dispatch of the film models, contact and friction laws [T229].
 
-The compiled callers keep ``cache=True``: the kinds tuple type is part of their signature, so
-numba's on-disk cache holds one specialisation per combination of kinds (the trade-off: a model
-with a new combination compiles once more), and the cache key stays independent of the process
-(no compiled function or closure cell enters it).
+The functions taking ``kinds`` are compiled per combination of kinds only in the eight kernels
+of :mod:`jointdyn.forces.kernel_set` (closures over the kinds, cached on disk per kinds); the
+driver, the methods and the right-hand side reach them by address and are compiled once for all
+models [T379].
 """
 
 from __future__ import annotations

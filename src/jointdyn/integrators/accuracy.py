@@ -18,10 +18,10 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from jointdyn.core.layout import BODY_I, BODY_J, TYPE
-from jointdyn.forces.elements import FILM_BREAKDOWN, NOUT, eval_forces
-from jointdyn.forces.journal import CONTACT, JOURNAL, NO_CONTACT, penetration
-from jointdyn.forces.kinds import kind_gate
+from jointdyn.core.layout import TYPE
+from jointdyn.forces.elements import NOUT
+from jointdyn.forces.journal import JOURNAL
+from jointdyn.forces.kernel_set import call_film_gap, call_forces
 
 FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.OUT_COLUMNS)
 
@@ -37,7 +37,7 @@ def force_resolution(t, y, mem, P, rtol, atol, dF, ysc=None):
     Q = np.zeros(n)
     out0 = np.zeros((nf, NOUT))
     out1 = np.zeros((nf, NOUT))
-    eval_forces(t, y[:n], y[n:], mem, fint, freal, tables, Q, out0, P.kinds)
+    call_forces(P.kernels, (t, y[:n], y[n:], mem, fint, freal, tables, Q, out0))
     yp = y.copy()
     dF[:] = 0.0
     for j in range(nn):
@@ -47,7 +47,7 @@ def force_resolution(t, y, mem, P, rtol, atol, dF, ysc=None):
                 s = ysc[j]
         yp[j] = y[j] + (atol + rtol * s)
         Q[:] = 0.0
-        eval_forces(t, yp[:n], yp[n:], mem, fint, freal, tables, Q, out1, P.kinds)
+        call_forces(P.kernels, (t, yp[:n], yp[n:], mem, fint, freal, tables, Q, out1))
         for k in range(nf):
             dF[k] += np.hypot(out1[k, FX] - out0[k, FX], out1[k, FY] - out0[k, FY])
         yp[j] = y[j]
@@ -62,32 +62,7 @@ def film_gap_unresolved(q, qd, P, rtol, atol, qsc):
     integration then cannot tell the film from ξ ≥ 1 (breakdown). rtol = 0: no check."""
     if rtol <= 0.0:
         return 0
-    return _film_gap_gate(P.kinds, q, qd, P.fint, P.freal, rtol, atol, qsc)  # 0 without journals [T175]
-
-
-@njit(inline="always")
-def _film_gap(q, qd, fint, freal, rtol, atol, qsc):
-    for k in range(fint.shape[0]):
-        if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] != NO_CONTACT:
-            continue
-        bi, bj = fint[k, BODY_I], fint[k, BODY_J]
-        d0, _ = penetration(q, qd, bi, bj, freal[k])
-        qp = q.copy()
-        spread = 0.0
-        for j in range(q.shape[0]):
-            s = qsc[j] if j < qsc.shape[0] and qsc[j] > 0.0 else abs(q[j])
-            qp[j] = q[j] + (atol + rtol * s)
-            d1, _ = penetration(qp, qd, bi, bj, freal[k])
-            spread += abs(d1 - d0)
-            qp[j] = q[j]
-        if -d0 <= spread:
-            return FILM_BREAKDOWN + k
-    return 0
-
-
-_film_gap_gate = kind_gate(
-    "film_gap_gate", JOURNAL, _film_gap, ("q", "qd", "fint", "freal", "rtol", "atol", "qsc"), "0"
-)
+    return call_film_gap(P.kernels, (q, qd, P.fint, P.freal, rtol, atol, qsc))  # 0 without journals [T175]
 
 
 @njit(cache=True)

@@ -7,7 +7,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn.core.arrays import copy_matrix, copy_vector
-from jointdyn.forces.elements import advance_memory
+from jointdyn.forces.kernel_set import call_memory
 from jointdyn.integrators.accuracy import film_gap_unresolved
 from jointdyn.multibody.dynamics import project, rhs
 
@@ -85,7 +85,7 @@ def accept_hooks(t, y, mem, P, do_project, rtol=0.0, atol=0.0, ysc=None):
             return PROJECTION_FAILED
     n = y.shape[0] // 2
     # non-zero codes from the elements (≥ 10, e.g. FILM_BREAKDOWN + element) pass through
-    st = advance_memory(t, y[:n], y[n:], mem, P.fint, P.freal, P.tables, P.kinds)
+    st = call_memory(P.kernels, (t, y[:n], y[n:], mem, P.fint, P.freal, P.tables))
     if st != OK:
         return st
     if ysc is None:

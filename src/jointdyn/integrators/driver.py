@@ -15,8 +15,8 @@ driver's slots first, then the method's own, declared by its record), so :func:`
 after ``budget`` step attempts and be called again to continue *bit for bit* as if it had never
 stopped (``simulate`` uses this to stay responsive to signals).
 
-The loop is compiled once per (stepper, Jacobian kind), and only when a run uses it [T170]:
-:func:`loop` builds it from the record, with the hooks bound as compile-time constants.
+The loop is compiled once per (stepper, Jacobian kind), only when a run uses it [T170], and for
+all models: the element kernels are called by address (``forces.kernel_set``, [T379]).
 """
 
 from __future__ import annotations
@@ -31,8 +31,7 @@ from numba import njit
 
 from jointdyn.core.arrays import copy_matrix, copy_vector
 from jointdyn.core.borrowed import borrowed
-from jointdyn.forces.contact_events import onset_limit, refine_peaks
-from jointdyn.forces.elements import onset_fraction, step_limit
+from jointdyn.forces import kernel_set as ks
 from jointdyn.integrators.common import (
     MAX_STEPS,
     OK,
@@ -256,8 +255,9 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                     break
                 stats[3] += 1
                 ictl[AGE] = 0
-            h = min(h, hmax, step_limit(y[:n], y[n:], mem, P.fint, P.freal, P.kinds))
-            h = min(h, onset_limit(y[:n], y[n:], w.f0[n:], mem, P.fint, P.freal, P.kinds))  # onset [T201]
+            q, qd, fint, freal = y[:n], y[n:], P.fint, P.freal
+            h = min(h, hmax, ks.call_step_limit(P.kernels, (q, qd, mem, fint, freal)))
+            h = min(h, ks.call_onset_limit(P.kernels, (q, qd, w.f0[n:], mem, fint, freal)))  # onset [T201]
             h_prop = h
             if LAND == 1:  # no dense output: land on the next output time
                 if iout < nout and t + h >= t_out[iout] - 1e-14 * abs(t_out[iout]):
@@ -279,7 +279,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                     h *= 0.25
                 h = _rejected(res, h, en, ctl, ictl, stats, reuse)
                 continue
-            frac = onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal, P.kinds)
+            frac = ks.call_onset_fraction(P.kernels, (q, qd, y1[:n], y1[n:], mem, fint, freal))
             if frac < 1.0:
                 stats[2] += 1
                 h *= max(frac, 0.01)
@@ -290,7 +290,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
             # outputs in (t, t_new] from the continuous extension (before the accepted-step hooks)
             if LAND == 0:
                 iout = _dense(t, t_new, y, w.f0, y1, w.K, mem, ctl, ictl, t_out, iout, w.Y, w.MEM)
-            refine_peaks(y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal, P.kinds)  # [T202]
+            ks.call_refine_peaks(P.kernels, (q, qd, y1[:n], y1[n:], h, mem, fint, freal))  # [T202]
             copy_vector(y, y1)
             t = t_new
             stats[1] += 1
@@ -403,9 +403,15 @@ def loop(stepper: Stepper, exact: int):
 _NO_TIMES = np.zeros(1)
 
 
+def _loop_for(stepper: Stepper, P, w):
+    if w.ictl[EXACT_JAC] and stepper.reuse is not None:  # a method that uses the exact Jacobian
+        ks.require_jacobian(P.kernels)
+    return loop(stepper, w.ictl[EXACT_JAC])
+
+
 def start(stepper: Stepper, P, do_project, w):
     """Accepted-step hooks and f(t0, y0) at the initial state; returns a status code."""
-    return loop(stepper, w.ictl[EXACT_JAC])(P, _NO_TIMES, 0.0, 0.0, 0.0, 0, bool(do_project), -1, w)
+    return _loop_for(stepper, P, w)(P, _NO_TIMES, 0.0, 0.0, 0.0, 0, bool(do_project), -1, w)
 
 
 def drive(stepper: Stepper, P, t_out, rtol, atol, hmax, max_steps, do_project, budget, w):
@@ -414,7 +420,7 @@ def drive(stepper: Stepper, P, t_out, rtol, atol, hmax, max_steps, do_project, b
     Returns OK (t_out[-1] reached), RUNNING (budget used up; call again to continue) or an
     error status (common.py). Outputs go to w.Y/w.MEM up to index w.ictl[IOUT]. Starts the
     integration first (:func:`start`) if that has not been done."""
-    return loop(stepper, w.ictl[EXACT_JAC])(
+    return _loop_for(stepper, P, w)(
         P, t_out, float(rtol), float(atol), float(hmax), int(max_steps), bool(do_project), int(budget), w
     )
 
@@ -425,19 +431,7 @@ def method_tolerances(stepper: Stepper, rtol: float, atol: float) -> tuple[float
 
 
 def run(
-    stepper: Stepper,
-    P,
-    y0,
-    mem0,
-    t0,
-    t_out,
-    rtol,
-    atol,
-    h0,
-    hmax,
-    max_steps,
-    do_project,
-    exact_jacobian=False,
+    stepper: Stepper, P, y0, mem0, t0, t_out, rtol, atol, h0, hmax, max_steps, do_project, exact_jacobian=0
 ):
     """Integrate from t0 to t_out[-1] in one call; returns (Y, MEM, n_written, stats, status,
     t_reached, h_next, y_final, mem_final), the historical return of the compiled solvers."""

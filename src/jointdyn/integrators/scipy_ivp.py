@@ -37,6 +37,7 @@ def scipy_ivp(P, y0, mem0, t0, t_out, rtol, atol, method="Radau", max_step=np.in
     stopped = [False, np.inf]  # stop() said yes; the time the step is cut at
 
     def f(t, y):
+        y = np.ascontiguousarray(y)  # the element kernels take contiguous arrays [T379]
         out = np.empty_like(y)
         if rhs(t, y, mem, P, out) != 0:
             status[0] = RHS_FAILED

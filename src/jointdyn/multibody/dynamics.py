@@ -22,7 +22,8 @@ from numba import njit
 from jointdyn.core.arrays import copy_vector
 from jointdyn.core.borrowed import borrowed
 from jointdyn.core.constraints import eval_constraints, eval_constraints_into
-from jointdyn.forces.elements import NOUT, eval_forces
+from jointdyn.forces.elements import NOUT
+from jointdyn.forces.kernel_set import call_forces
 from jointdyn.multibody.cholesky import cholesky_factor, cholesky_solve, cholesky_substitute  # noqa: F401
 
 OK = 0
@@ -118,12 +119,12 @@ def _qdd_of(qdd, Q, J, lam, minv, m, n):
 def _accelerations(t, q, qd, mem, P, qdd, lam, eout):
     """:func:`accelerations`, inlined into :func:`rhs` (a call with the packed system and the
     workspace views as arguments cost ≈ 0.19 µs of a 1.16 µs RHS [T192])."""
-    minv, q0_force, cint, creal, fint, freal, tables, m, stab, ws, kinds = P
+    minv, q0_force, cint, creal, fint, freal, tables, m, stab, ws, kernels = P
     n = q.shape[0]
     Q = ws[:n]
     copy_vector(Q, q0_force)
     if fint.shape[0] > 0:  # the call alone costs ≈ 0.13 µs, 12 % of an element-free RHS [T192]
-        eval_forces(t, q, qd, mem, fint, freal, tables, Q, eout, kinds)
+        call_forces(kernels, (t, q, qd, mem, fint, freal, tables, Q, eout))
     if m > 0:
         Phi, Phit, gam, J, S, _ = _constraint_views(ws, n, m)
         eval_constraints_into(t, q, qd, cint, creal, Phi, J, Phit, gam, _trig_scratch(ws, n))
@@ -350,7 +351,7 @@ def _sample(t, q, qd, mem, P, do_project, tol, Phi, J, Phit, gam, S, Q, cs, qdd,
     # accelerations at the final (q, q̇): the same arithmetic as :func:`accelerations` [T10]
     copy_vector(Q, P.q0_force)
     if P.fint.shape[0] > 0:  # no call without elements [T192]
-        eval_forces(t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout, P.kinds)
+        call_forces(P.kernels, (t, q, qd, mem, P.fint, P.freal, P.tables, Q, eout))
     if m > 0:
         a = P.stab[0]
         if a > 0.0:

@@ -27,8 +27,8 @@ from jointdyn.core.constraints import (
 )
 from jointdyn.core.kinematics import body_state, point_kinematics
 from jointdyn.core.layout import BODY_I, BODY_J, ETA_I, ETA_J, TYPE, XI_I, XI_J
-from jointdyn.forces.element_jacobians import force_jacobian
 from jointdyn.forces.elements import NOUT
+from jointdyn.forces.kernel_set import call_jacobian
 from jointdyn.multibody.dynamics import accelerations, cholesky_factor, cholesky_substitute
 
 
@@ -185,7 +185,7 @@ def system_jacobian_into(t, y, mem, P, Jm, ft, jw):
     status = accelerations(t, q, qd, mem, P, qdd, lam, eout)
     if status != 0:
         return status
-    force_jacobian(t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt, P.kinds)
+    call_jacobian(P.kernels, (t, q, qd, mem, fint, freal, tables, dQdq, dQdqd, dQdt))
     # G = [∂Q/∂q + ∂(Φ_qᵀλ)/∂q, ∂Q/∂q̇, ∂Q/∂t]  (n × (2n+1))
     for i in range(n):
         for j in range(n):

@@ -34,9 +34,14 @@ class Packed(NamedTuple):
     """(1,) Baumgarte rate a [1/s]"""
     ws: np.ndarray
     """preallocated float workspace (``dynamics.workspace_size``)"""
-    kinds: tuple = ()
-    """the element kinds present (``forces.elements.kinds_of``): a type-level switch, so the
-    compiled kernels contain only these kinds [T175]"""
+    kernels: np.ndarray
+    """(8,) int64 addresses of the element kernels compiled for the system's kinds
+    (``forces.kernel_set``, [T379]): process-local, so a packed system is not pickled"""
+
+    def __reduce__(self):
+        raise TypeError(
+            "a packed system holds this process's kernel addresses: pickle the System and pack it again"
+        )
 
 
 _SHARED_KINDS: ContextVar[tuple | None] = ContextVar("jointdyn_shared_kinds", default=None)
@@ -117,8 +122,10 @@ class System:
         """Number of coordinates (3 per moving body)."""
         return self.minv.shape[0]
 
-    def packed(self, baumgarte: float = 0.0) -> Packed:
-        """The arrays handed to the compiled kernels, with a fresh workspace."""
+    def packed(self, baumgarte: float = 0.0, jacobian: bool = False) -> Packed:
+        """The arrays handed to the compiled kernels, with a fresh workspace; ``jacobian``: with
+        the exact element Jacobian compiled (the stiff methods ask for it themselves)."""
+        from jointdyn.forces.kernel_set import kernel_addresses
         from jointdyn.multibody.dynamics import workspace_size
 
         ws = np.zeros(workspace_size(self.n, self.n_rows, self.fint.shape[0]))
@@ -133,7 +140,7 @@ class System:
             int(self.n_rows),
             np.array([float(baumgarte)]),
             ws,
-            self.kinds(),
+            kernel_addresses(self.kinds(), jacobian),
         )
 
     def kinds(self) -> tuple:
