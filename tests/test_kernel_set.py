@@ -9,7 +9,14 @@ import pytest
 from numba import njit
 
 from jointdyn.forces.elements import kinds_of
-from jointdyn.forces.kernel_set import SLOTS, call_forces, kernel_addresses, kernel_kinds
+from jointdyn.forces.kernel_set import (
+    SLOTS,
+    call_forces,
+    call_step_limit,
+    compiled_address,
+    kernel_addresses,
+    kernel_kinds,
+)
 from jointdyn.integrators import driver
 from jointdyn.integrators.dopri5 import DOPRI5
 from jointdyn.multibody.dynamics import rhs
@@ -92,3 +99,26 @@ def test_a_packed_system_is_not_pickled():
     with pytest.raises(TypeError, match="pickle the System"):
         pickle.dumps(system.packed())
     pickle.loads(pickle.dumps(system))  # the system itself travels
+
+
+@njit
+def _raising_limit(q, qd, mem, fint, freal):
+    if q[0] < 0.0:
+        raise ValueError("negative first coordinate")
+    return 2.0 * q[0]
+
+
+@njit
+def _limit_by_address(kernels, q, qd, mem, fint, freal):
+    return call_step_limit(kernels, (q, qd, mem, fint, freal))
+
+
+def test_an_exception_in_a_kernel_reaches_the_caller():
+    """The call by address uses numba's calling convention: a kernel's exception propagates
+    through the compiled caller to Python with its type and message (no crash, no silent value)."""
+    kernels = np.zeros(len(SLOTS), dtype=np.int64)
+    kernels[list(SLOTS).index("step_limit")] = compiled_address(_raising_limit, SLOTS["step_limit"])
+    q, mem, fint, freal = np.ones(3), np.zeros((1, 1)), np.zeros((1, 1), dtype=np.int64), np.zeros((1, 1))
+    assert _limit_by_address(kernels, q, q, mem, fint, freal) == 2.0
+    with pytest.raises(ValueError, match="negative first coordinate"):
+        _limit_by_address(kernels, -q, q, mem, fint, freal)

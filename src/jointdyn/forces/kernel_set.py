@@ -95,7 +95,8 @@ _SETS: dict = {}  # kinds -> (addresses, dispatchers): the dispatchers keep the 
 _KINDS: dict = {}  # address of an addresses array -> its kinds
 
 
-def _address(disp, sig) -> int:
+def compiled_address(disp, sig) -> int:
+    """Machine address of the dispatcher ``disp`` compiled for ``sig`` (numba calling convention)."""
     disp.compile(sig)
     cres = disp.get_compile_result(sig)
     return cres.library.get_pointer_to_function(cres.fndesc.llvm_func_name)
@@ -111,7 +112,7 @@ def kernel_addresses(kinds: tuple, jacobian: bool = False) -> np.ndarray:
         addresses = np.zeros(len(SLOTS), dtype=np.int64)
         for i, (disp, sig) in enumerate(zip(dispatchers, SLOTS.values(), strict=True)):
             if i != INDEX["jacobian"]:
-                addresses[i] = _address(disp, sig)
+                addresses[i] = compiled_address(disp, sig)
         _SETS[kinds] = (addresses, dispatchers)
         _KINDS[addresses.ctypes.data] = kinds
     if jacobian:
@@ -130,7 +131,7 @@ def require_jacobian(kernels: np.ndarray) -> None:
     i = INDEX["jacobian"]
     if kernels[i] == 0:
         kinds = kernel_kinds(kernels)
-        kernels[i] = _address(_SETS[kinds][1][i], SLOTS["jacobian"])
+        kernels[i] = compiled_address(_SETS[kinds][1][i], SLOTS["jacobian"])
 
 
 _NO_JACOBIAN = "exact element Jacobian not compiled for this packed system: use System.packed(jacobian=True)"
