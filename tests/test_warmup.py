@@ -48,3 +48,12 @@ def test_a_run_after_warmup_compiles_nothing(tmp_path):
     r = subprocess.run([sys.executable, "-c", RUN], env=env, capture_output=True, text=True, timeout=900)
     assert r.returncode == 0, r.stderr[-3000:]
     assert int(r.stdout.split()[-1]) == 0  # a longer run of the same model: all loaded
+
+
+def test_targets_of_one_method_share_a_compiled_loop():
+    """The warm-up's first wave takes one target per (solver, Jacobian kind) [T379]: the dry and
+    perfect joints share dopri5's loop, the lubricated joints radau5's."""
+    from jointdyn.studies.warmup import chain_of
+
+    assert chain_of("perfect") == chain_of("dry") != chain_of("ott") == chain_of("alshaer2005")
+    assert chain_of("perfect")[0] == "dopri5" and chain_of("ott")[0] == "radau5"
