@@ -122,3 +122,16 @@ def test_an_exception_in_a_kernel_reaches_the_caller():
     assert _limit_by_address(kernels, q, q, mem, fint, freal) == 2.0
     with pytest.raises(ValueError, match="negative first coordinate"):
         _limit_by_address(kernels, -q, q, mem, fint, freal)
+
+
+def test_a_call_with_wrong_argument_types_is_refused_when_compiled():
+    """The call checks, when its caller is compiled, that the kernel set is an int64 array and
+    that each argument converts to the kernel's signature (a wrong type never reaches the
+    machine code)."""
+    from numba.core.errors import TypingError
+
+    q, mem, fint, freal = np.ones(3), np.zeros((1, 1)), np.zeros((1, 1), dtype=np.int64), np.zeros((1, 1))
+    with pytest.raises(TypingError, match="expected Packed.kernels"):
+        _limit_by_address(np.zeros(len(SLOTS)), q, q, mem, fint, freal)
+    with pytest.raises(TypingError, match="argument 2 is array\\(int64"):
+        _limit_by_address(np.zeros(len(SLOTS), dtype=np.int64), q, q, fint, fint, freal)

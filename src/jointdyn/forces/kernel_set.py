@@ -6,8 +6,9 @@ eight kernels of :data:`SLOTS`. For a set of element kinds (``forces.elements.ki
 journal element's laws, [T175, T229]) :func:`kernel_addresses` compiles those eight kernels with
 the kinds bound (numba closures, cached on disk per kinds) and returns their machine addresses
 as an int64 array; the packed system carries that array (``Packed.kernels``) and the callers
-reach a kernel through :data:`call` (a numba intrinsic: an indirect call with numba's calling
-convention, so an exception raised in a kernel propagates like a direct call's).
+reach a kernel through ``call_<slot>(kernels, (arguments…))`` (a numba intrinsic: an indirect call
+with numba's calling convention, so an exception raised in a kernel propagates like a direct
+call's).
 
 The type of the packed system is therefore the same for every model: the driver, the step
 attempts of each method, the right-hand side, the output samples and the projection are
@@ -18,8 +19,6 @@ a packed system is rebuilt, not pickled, in another process (``Packed.__reduce__
 """
 
 from __future__ import annotations
-
-import warnings
 
 import numpy as np
 from numba import njit, types
@@ -143,6 +142,10 @@ def _caller(slot: str):
 
     @intrinsic
     def call_kernel(typingctx, kernels, args):
+        if not (isinstance(kernels, types.Array) and kernels.dtype == _I and kernels.ndim == 1):
+            raise TypingError(
+                f"kernel {slot!r}: the kernel set is {kernels}, expected Packed.kernels (int64)"
+            )
         if not isinstance(args, types.BaseTuple) or len(args) != len(sig.args):
             raise TypingError(f"kernel {slot!r} takes {len(sig.args)} arguments, got {args}")
         for i, (have, want) in enumerate(zip(args, sig.args, strict=True)):
@@ -173,13 +176,11 @@ def _caller(slot: str):
     return call_kernel
 
 
-with warnings.catch_warnings():
-    warnings.simplefilter("ignore")
-    call_forces = _caller("forces")
-    call_jacobian = _caller("jacobian")
-    call_memory = _caller("memory")
-    call_onset_fraction = _caller("onset_fraction")
-    call_step_limit = _caller("step_limit")
-    call_onset_limit = _caller("onset_limit")
-    call_refine_peaks = _caller("refine_peaks")
-    call_film_gap = _caller("film_gap")
+call_forces = _caller("forces")
+call_jacobian = _caller("jacobian")
+call_memory = _caller("memory")
+call_onset_fraction = _caller("onset_fraction")
+call_step_limit = _caller("step_limit")
+call_onset_limit = _caller("onset_limit")
+call_refine_peaks = _caller("refine_peaks")
+call_film_gap = _caller("film_gap")
