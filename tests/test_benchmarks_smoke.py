@@ -41,3 +41,14 @@ def test_rhs_ab_runs_a_tree_against_itself(capsys):
     ab_main([src, src, "--rounds", "1", "--n", "1000", "--cases", "perfect"])
     out = capsys.readouterr().out
     assert "| perfect |" in out and "B/A" in out
+
+
+def test_kernel_set_cost_reports_every_slot(capsys):
+    """benchmarks.kernel_set_cost for the perfect joint (its set is the smallest): one row per
+    kernel slot and the total, from a fresh process and an empty cache (no timing assertion)."""
+    from benchmarks.kernel_set_cost import main as cost_main
+    from jointdyn.forces.kernel_set import SLOTS
+
+    cost_main(["--joints", "perfect"])
+    rows = [ln.split("|")[1].strip() for ln in capsys.readouterr().out.splitlines() if ln.startswith("| ")]
+    assert rows[1:] == [*SLOTS, "total"]

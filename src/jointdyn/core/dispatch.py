@@ -73,16 +73,19 @@ def codes_of(kinds, known: Sequence[int]) -> tuple[int, ...]:
     return tuple(c for c, t in enumerate(kinds.types) if not isinstance(t, types.NoneType) and c in known)
 
 
-def generated_overload(name: str, params: str, build: Callable[..., Callable]):
+def generated_overload(name: str, params: str, build: Callable[..., Callable], inline: str = "always"):
     """A function ``name(params)`` for compiled callers only: its compiled body is the function
-    ``build(<type of the first parameter>)`` returns, generated at typing time, and is inlined
-    into the caller (the Python stub only raises)."""
+    ``build(<type of the first parameter>)`` returns, generated at typing time (the Python stub
+    only raises). ``inline="always"`` inlines it into the caller (small bodies that fold to a
+    constant or a direct call on the hot path); ``"never"`` compiles it once per signature as a
+    function of its own (a whole hook: copying its IR into the caller costs more compile time
+    than the call costs at run time, [T381])."""
     first = params.split(",")[0].strip()
     src = f"def {name}({params}):\n    raise NotImplementedError('compiled only')\n"
     src += f"def typed({params}):\n    return build({first})\n"
     ns: dict = {"__name__": __name__, "build": build}
     exec(compile(src, f"<{__name__}:{name}>", "exec"), ns)  # noqa: S102
-    overload(ns[name], prefer_literal=False, inline="always")(ns["typed"])
+    overload(ns[name], prefer_literal=False, inline=inline)(ns["typed"])
     return ns[name]
 
 

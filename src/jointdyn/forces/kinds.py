@@ -10,9 +10,12 @@ code (``1`` for a kind of this package; a plugin's hash, or a journal element's 
 film, contact and friction laws it uses [T229], see :mod:`jointdyn.core.dispatch`) and ``None``
 where it has none (numba types it as e.g. ``Tuple(none, int64, none, …)``). The
 functions made here — :func:`kind_loop` (the loop over the elements), :func:`kind_switch` (one
-element) and :func:`kind_gate` (a hook of one kind) — are numba ``@overload`` functions, inlined into
-their caller, whose code is generated at typing time: an ``if typ == code: kernel(...)`` chain
-over the present codes only. The absent kinds are never typed, lowered or optimised.
+element) and :func:`kind_gate` (a hook of one kind) — are numba ``@overload`` functions whose code
+is generated at typing time: an ``if typ == code: kernel(...)`` chain over the present codes
+only. The loop is inlined into its caller (the right-hand side's path); a switch or a gate is
+compiled as a function of its own, called once per step or per Jacobian ([T381]: copying a
+whole hook's IR into its caller cost more compile time than the call costs). The absent kinds
+are never typed, lowered or optimised.
 ``kinds=None`` (or omitted) means every registered kind (and, for the laws, every built-in law).
 The machinery (generated ``@overload`` functions) is :mod:`jointdyn.core.dispatch`, shared with
 the law dispatch of the film models, contact and friction laws [T229].
@@ -75,7 +78,7 @@ def kind_switch(
         lines.append(f"    return {default}" if default is not None else "    return")
         return generated(name, lines, ns)
 
-    return generated_overload(name, f"kinds, typ, {arglist}", build)
+    return generated_overload(name, f"kinds, typ, {arglist}", build, inline="never")  # [T381]
 
 
 def kind_gate(name: str, code: int, kernel: Callable, args: Sequence[str], default: str):
@@ -88,7 +91,7 @@ def kind_gate(name: str, code: int, kernel: Callable, args: Sequence[str], defau
         body = f"_kernel({arglist})" if code in codes_of(kinds, (code,)) else default
         return generated(name, [f"def {name}(kinds, {arglist}):", f"    return {body}"], {"_kernel": kernel})
 
-    return generated_overload(name, f"kinds, {arglist}", build)
+    return generated_overload(name, f"kinds, {arglist}", build, inline="never")  # [T381]
 
 
 def kind_loop(name: str, kernels: Mapping[int, Callable | tuple], args: Sequence[str], constants: Mapping):
