@@ -21,8 +21,10 @@ def _mb(n: int) -> str:
 
 @cache_app.command("info")
 def info() -> None:
-    """List the cache: compiled kernels of these sources, stale kernels of other versions, tables."""
+    """List the cache: compiled kernels of these sources, stale kernels of other versions, tables;
+    and whether the step loops compiled at install are used [T382]."""
     from jointdyn.core.compiled import cache_base, cache_entries, cache_root
+    from jointdyn.integrators import aot
 
     with _one_line_errors():
         entries = cache_entries()
@@ -34,6 +36,7 @@ def info() -> None:
         console.print(tab)
         total = sum(e["bytes"] for e in entries)
         console.print(f"total {_mb(total)}; these sources compile into {escape(cache_root().name)}")
+        console.print(f"ahead of time: {escape(aot.status())}")
 
 
 @cache_app.command("clear")

@@ -8,6 +8,7 @@ method is one module and one line here (docs/how-to-add-a-model.md, "An integrat
 
 from __future__ import annotations
 
+from jointdyn.integrators import aot  # noqa: F401  (registers the copies compiled at install [T382])
 from jointdyn.integrators.dopri5 import DOPRI5
 from jointdyn.integrators.radau5 import RADAU5
 from jointdyn.integrators.rodas4 import RODAS4

@@ -19,6 +19,7 @@ import numpy as np
 from numba import njit
 
 from jointdyn.core.layout import TYPE
+from jointdyn.core.precompiled import call
 from jointdyn.forces.elements import NOUT
 from jointdyn.forces.journal import JOURNAL
 from jointdyn.forces.kernel_set import call_film_gap, call_forces
@@ -95,7 +96,7 @@ def check_force_resolution(ts, ys, mems, eout, P, rtol, atol, n_check: int = 64,
     F = np.hypot(eout[:, :, FX], eout[:, :, FY])
     idx = np.unique(np.concatenate([np.linspace(0, nt - 1, min(n_check, nt)).astype(np.int64), F.argmax(0)]))
     scale = np.zeros(ys.shape[1]) if ysc is None else ysc  # 0: |y_j|
-    worst, where = worst_resolution(ts, ys, mems, P, rtol, atol, idx, scale)
+    worst, where = call(worst_resolution, ts, ys, mems, P, float(rtol), float(atol), idx, scale)  # [T382]
     peak = F.max(0)
     ratio = np.where(peak > 0, worst / np.where(peak > 0, peak, 1.0), 0.0)  # unloaded: nothing to resolve
     ratio = np.where(journal, ratio, -1.0)

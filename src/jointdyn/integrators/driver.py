@@ -31,6 +31,7 @@ from numba import njit
 
 from jointdyn.core.arrays import copy_matrix, copy_vector
 from jointdyn.core.borrowed import borrowed
+from jointdyn.core.precompiled import call
 from jointdyn.forces import kernel_set as ks
 from jointdyn.integrators.common import (
     MAX_STEPS,
@@ -179,7 +180,7 @@ def new_work(
         err=np.zeros(nn),
         gk=np.zeros(nn),
         # m ≤ n constraint rows for a non-singular system (a longer scratch is made if needed)
-        jw=np.zeros(jacobian_work_size(nn // 2, nn // 2, mem0.shape[0]) if exact_jacobian else 1),
+        jw=np.zeros(call(jacobian_work_size, nn // 2, nn // 2, mem0.shape[0]) if exact_jacobian else 1),
         ysc=np.zeros(nn) if ysc is None or not stepper.stiff else np.asarray(ysc, dtype=float).copy(),
     )
 
@@ -404,14 +405,15 @@ _NO_TIMES = np.zeros(1)
 
 
 def _loop_for(stepper: Stepper, P, w):
-    if w.ictl[EXACT_JAC] and stepper.reuse is not None:  # a method that uses the exact Jacobian
+    exact = int(w.ictl[EXACT_JAC]) if stepper.reuse is not None else 0
+    if exact:  # a method that uses the exact Jacobian
         ks.require_jacobian(P.kernels)
-    return loop(stepper, w.ictl[EXACT_JAC])
+    return loop(stepper, exact)
 
 
 def start(stepper: Stepper, P, do_project, w):
     """Accepted-step hooks and f(t0, y0) at the initial state; returns a status code."""
-    return _loop_for(stepper, P, w)(P, _NO_TIMES, 0.0, 0.0, 0.0, 0, bool(do_project), -1, w)
+    return call(_loop_for(stepper, P, w), P, _NO_TIMES, 0.0, 0.0, 0.0, 0, bool(do_project), -1, w)
 
 
 def drive(stepper: Stepper, P, t_out, rtol, atol, hmax, max_steps, do_project, budget, w):
@@ -420,9 +422,8 @@ def drive(stepper: Stepper, P, t_out, rtol, atol, hmax, max_steps, do_project, b
     Returns OK (t_out[-1] reached), RUNNING (budget used up; call again to continue) or an
     error status (common.py). Outputs go to w.Y/w.MEM up to index w.ictl[IOUT]. Starts the
     integration first (:func:`start`) if that has not been done."""
-    return _loop_for(stepper, P, w)(
-        P, t_out, float(rtol), float(atol), float(hmax), int(max_steps), bool(do_project), int(budget), w
-    )
+    args = (P, t_out, float(rtol), float(atol), float(hmax), int(max_steps), bool(do_project), int(budget), w)
+    return call(_loop_for(stepper, P, w), *args)  # compiled at install where built [T382]
 
 
 def method_tolerances(stepper: Stepper, rtol: float, atol: float) -> tuple[float, float]:

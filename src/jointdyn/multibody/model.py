@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from jointdyn.core.constraints import CONSTRAINTS, Revolute, constraint_table, eval_constraints
+from jointdyn.core.precompiled import call
 from jointdyn.errors import ModelError
 from jointdyn.forces import elements as fe
 from jointdyn.multibody import codec
@@ -283,7 +284,7 @@ def _assemble(y, cint, creal, m, minv, tol, max_iter):
         return
     n = y.shape[0] // 2
     q, qd = y[:n], y[n:]
-    res = project_positions(0.0, q, qd, minv, cint, creal, m, tol, max_iter)
+    res = call(project_positions, 0.0, q, qd, minv, cint, creal, m, tol, max_iter)  # [T382]
     if res < 0.0:
         raise ModelError(
             "position analysis failed: the constraint Jacobian is singular "
@@ -296,9 +297,9 @@ def _assemble(y, cint, creal, m, minv, tol, max_iter):
             f"and the initial guesses of body positions/angles"
         )
     Phi, J, Phit, gam = np.empty(m), np.empty((m, n)), np.empty(m), np.empty(m)
-    eval_constraints(0.0, q, qd, cint, creal, Phi, J, Phit, gam)
-    if np.linalg.matrix_rank(J @ np.diag(minv) @ J.T) < m or not project_velocities(
-        0.0, q, qd, minv, cint, creal, m
+    call(eval_constraints, 0.0, q, qd, cint, creal, Phi, J, Phit, gam)
+    if np.linalg.matrix_rank(J @ np.diag(minv) @ J.T) < m or not call(
+        project_velocities, 0.0, q, qd, minv, cint, creal, m
     ):
         raise ModelError(
             "the constraint Jacobian is rank deficient at the assembled position "
@@ -310,7 +311,8 @@ def _warn_off_centre(elements, index, point_of, q, qd, cint, creal, rows) -> Non
     """Warn when the given positions satisfy the ideal joints and deliberately put a journal off
     centre (1 % … 100 % of its clearance): assembly centres it [T289]."""
     phi = np.zeros(rows)
-    eval_constraints(0.0, q, qd, cint, creal, phi, np.zeros((rows, len(q))), np.zeros(rows), np.zeros(rows))
+    J, gam = np.zeros((rows, len(q))), np.zeros(rows)
+    call(eval_constraints, 0.0, q, qd, cint, creal, phi, J, np.zeros(rows), gam)
     if np.abs(phi).max(initial=0.0) > 1e-9:
         return  # a rough guess that the assembly corrects anyway: nothing deliberate to report
     for name, e in elements:

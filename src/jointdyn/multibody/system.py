@@ -154,13 +154,14 @@ class System:
     def degrees_of_freedom(self, t: float = 0.0) -> int:
         """n − rank Φ_q at the assembled state y0 (drivers count as constraints) [T286]."""
         from jointdyn.core.constraints import eval_constraints
+        from jointdyn.core.precompiled import call
 
         n, m = self.n, int(self.n_rows)
         if m == 0:
             return n
         q, qd = self.y0[:n].copy(), self.y0[n:].copy()
         J = np.zeros((m, n))
-        eval_constraints(t, q, qd, self.cint, self.creal, np.zeros(m), J, np.zeros(m), np.zeros(m))
+        call(eval_constraints, t, q, qd, self.cint, self.creal, np.zeros(m), J, np.zeros(m), np.zeros(m))
         return n - int(np.linalg.matrix_rank(J))
 
     def coordinate_labels(self) -> list[str]:

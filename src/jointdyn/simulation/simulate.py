@@ -12,6 +12,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from jointdyn.core import interrupts
+from jointdyn.core.precompiled import call
 from jointdyn.errors import Interrupted, PhysicsWarning, SimulationError
 from jointdyn.forces.elements import FILM_BREAKDOWN, JFO_FAILED, THERMAL_RANGE
 from jointdyn.integrators import SOLVERS
@@ -76,7 +77,7 @@ def _message(system: System, status: int) -> str:
 
 def _element_hint(system: System, P, t, y, mem) -> str:
     """What the elements that declare ``failure_hint`` say about the state where the run failed."""
-    _, _, eout, _ = outputs(np.array([t]), y[None, :].copy(), mem[None].copy(), P, False)
+    _, _, eout, _ = call(outputs, np.array([t]), y[None, :].copy(), mem[None].copy(), P, False)
     hints = []
     for k, (name, el) in enumerate(zip(system.element_names, system.elements)):
         hint = getattr(el, "failure_hint", None)
@@ -359,7 +360,7 @@ def _simulate(system, config, progress, step_budget, t_start, y0, mem0) -> Resul
     Y = np.ascontiguousarray(Y[:nw])
     MEM = np.ascontiguousarray(MEM[:nw])
     ts = t_out[:nw]
-    qdd, lam, eout, drift = outputs(ts, Y, MEM, P, projects)
+    qdd, lam, eout, drift = call(outputs, ts, Y, MEM, P, projects)  # [T382]
     signal_name = interrupts.received()
     if signal_name is not None and status == OK:  # a signal during the post-processing
         status = INTERRUPTED

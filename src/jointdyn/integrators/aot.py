@@ -1,0 +1,158 @@
+"""The step loops and the model-independent kernels compiled ahead of time, at install [T382].
+
+Since [T379] the packed system has one numba type for every model (the element code is reached
+by address), so the step loop of a method (:func:`jointdyn.integrators.driver.loop`: the driver
+with the method's attempt, the right-hand side, the system Jacobian, the projection and the
+accepted-step hooks) is the same machine code for every model, and so are the output samples,
+the accuracy guard's resolution check and the assembly's projection. :func:`build` compiles them
+once, when the package is built (``setup.py``, numba's ``pycc``), into the extension module
+``jointdyn.integrators._loops``; a first run then compiles only its model's kernel set. The
+kernel sets stay compiled at first use and are called by address from the compiled loop exactly
+as from the just-in-time one.
+
+The module is used only when it was built from these sources by this numba (:func:`build_key`,
+exported by the module as ``key``) and a call's argument types (callers use
+:func:`jointdyn.core.precompiled.call`) are those it was built for
+(:func:`types_of`); otherwise the function is compiled just in time as before. Building needs a C
+compiler; where the build fails the package installs without the module and runs just in time.
+:func:`status` says which case holds (``jointdyn cache info``).
+"""
+
+from __future__ import annotations
+
+import hashlib
+from functools import cache
+
+import numpy as np
+
+from jointdyn.core.precompiled import register
+
+#: (method, exact Jacobian) of the loops compiled ahead of time: the defaults of the shipped
+#: models (dopri5 for perfect and dry joints, radau5 with the exact Jacobian for films)
+LOOPS = (("dopri5", 0), ("radau5", 1))
+MODULE = "jointdyn.integrators._loops"
+
+
+def build_key() -> int:
+    """A 62-bit integer of the package sources (as the kernel cache's, [T225]) and the numba
+    version: a module built from other sources or by another numba is not used."""
+    import numba
+
+    from jointdyn.core.compiled import _source_hash
+
+    h = hashlib.sha1(f"{_source_hash()} numba {numba.__version__}".encode())
+    return int.from_bytes(h.digest()[:8], "little") >> 2
+
+
+def _steppers() -> dict:
+    from jointdyn.integrators import SOLVERS
+
+    return {name: SOLVERS[name][0] for name, _ in LOOPS}
+
+
+def _packed():
+    """A packed system of the types ``System.packed`` builds (values irrelevant)."""
+    from jointdyn.multibody.system import Packed
+
+    f, i = np.zeros(1), np.zeros(1, dtype=np.int64)
+    f2, i2, f3 = np.zeros((1, 1)), np.zeros((1, 1), dtype=np.int64), np.zeros((1, 1, 1))
+    return Packed(f, f, i2, f2, i2, f2, f3, 0, f, f, i)
+
+
+@cache
+def entries() -> dict:
+    """Export name -> (the just-in-time function, sample arguments of the types its callers
+    pass): the loops of :data:`LOOPS` (``driver.drive``) and the functions called from Python once
+    per run or per model (the output samples, the accuracy guard, the assembly)."""
+    from jointdyn.core.constraints import eval_constraints
+    from jointdyn.integrators.accuracy import worst_resolution
+    from jointdyn.integrators.driver import loop, new_work
+    from jointdyn.multibody.dynamics import outputs, project_positions, project_velocities
+    from jointdyn.multibody.jacobian import jacobian_work_size
+
+    P, t = _packed(), np.zeros(2)
+    f1, f2, f3, i1, i2 = np.zeros(1), np.zeros((1, 1)), np.zeros((1, 1, 1)), np.zeros(1, np.int64), P.cint
+    out: dict = {}
+    for name, exact in LOOPS:
+        stepper = _steppers()[name]
+        fn = loop(stepper, exact)
+        w = new_work(stepper, np.zeros(2), np.zeros((1, 1)), 0.0, t, 0.0)  # the same types with exact
+        out[f"{fn.py_func.__qualname__}_{exact}"] = (fn, (P, t, 0.0, 0.0, 0.0, 0, True, 0, w))
+    out["outputs"] = (outputs, (f1, f2, f3, P, True))
+    out["worst_resolution"] = (worst_resolution, (f1, f2, f3, P, 0.0, 0.0, i1, f1))
+    out["project_positions"] = (project_positions, (0.0, f1, f1, f1, i2, f2, 0, 0.0, 0))  # assembly
+    out["project_velocities"] = (project_velocities, (0.0, f1, f1, f1, i2, f2, 0))
+    out["eval_constraints"] = (eval_constraints, (0.0, f1, f1, i2, f2, f1, f2, f1, f1))
+    out["jacobian_work_size"] = (jacobian_work_size, (0, 0, 0))
+    return out
+
+
+def types_of(args: tuple) -> tuple:
+    """The numba types of a call's arguments."""
+    from numba import typeof
+
+    return tuple(typeof(a) for a in args)
+
+
+@cache
+def _built_types(name: str) -> tuple:
+    return types_of(entries()[name][1])
+
+
+@cache
+def _names() -> dict:
+    return {fn: name for name, (fn, _) in entries().items()}
+
+
+@cache
+def _module():
+    """The compiled module if present and built from these sources by this numba; None if absent,
+    False if stale."""
+    import importlib
+
+    try:
+        mod = importlib.import_module(MODULE)
+    except Exception:  # absent, or not loadable here: compile at first use
+        return None
+    return mod if mod.key() == build_key() else False
+
+
+def status() -> str:
+    """One line: whether the functions compiled ahead of time are used, and if not, why."""
+    mod = _module()
+    loops = ", ".join(f"{n}{' (exact Jacobian)' if e else ''}" for n, e in LOOPS)
+    if mod is None:
+        return f"not built at install: the step loops ({loops}) compile at first use"
+    if mod is False:
+        return f"built from other sources or another numba: the step loops ({loops}) compile at first use"
+    return f"compiled at install: the step loops ({loops}), the output samples and the assembly"
+
+
+def compiled(fn, args: tuple):
+    """The ahead-of-time copy of the just-in-time function ``fn`` for a call with ``args``, or
+    ``fn`` itself (no module, a stale one, no copy of ``fn``, other argument types)."""
+    mod = _module()
+    name = _names().get(fn) if mod else None
+    if name is None or types_of(args) != _built_types(name):
+        return fn
+    return getattr(mod, name)
+
+
+register(compiled)  # core.precompiled.call goes through the copies from now on
+
+
+def build(output: str) -> None:
+    """Compile :func:`entries` into the extension module file ``output`` (numba's ``pycc``)."""
+    import os
+
+    import numba
+    from numba.pycc import CC
+
+    cc = CC(MODULE.rsplit(".", 1)[1])
+    cc.output_dir = os.path.dirname(os.path.abspath(output))
+    cc.output_file = os.path.basename(output)
+    key = build_key()
+    cc.export("key", numba.int64())(lambda: key)
+    for name, (fn, _) in entries().items():
+        cc.export(name, _built_types(name))(fn.py_func)
+    cc.compile()
