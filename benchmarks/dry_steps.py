@@ -27,14 +27,10 @@ import numpy as np
 from numba import njit
 
 from jointdyn.core.borrowed import borrowed
+from jointdyn.forces.contact_events import onset_limit, refine_peaks
+from jointdyn.forces.elements import onset_fraction
 from jointdyn.forces.journal import IN_CONTACT
-from jointdyn.forces.kernel_set import (
-    call_memory,
-    call_onset_fraction,
-    call_onset_limit,
-    call_refine_peaks,
-    call_step_limit,
-)
+from jointdyn.forces.kernel_set import call_memory, call_step_limit
 from jointdyn.integrators.common import error_norm
 from jointdyn.integrators.dopri5 import DOPRI5
 from jointdyn.integrators.driver import RUNNING, T, drive, new_work, start
@@ -97,11 +93,11 @@ def _piece_loop(piece: int):
                 acc += project(t + h, y, P, 1e-12)
             elif piece == 2:
                 acc += call_step_limit(P.kernels, (y[:n], y[n:], mem, P.fint, P.freal))
-                acc += call_onset_limit(P.kernels, (y[:n], y[n:], f[n:], mem, P.fint, P.freal))
+                acc += onset_limit(y[:n], y[n:], f[n:], mem, P.fint, P.freal)
             elif piece == 3:
-                acc += call_onset_fraction(P.kernels, (y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal))
+                acc += onset_fraction(y[:n], y[n:], y1[:n], y1[n:], mem, P.fint, P.freal)
             elif piece == 4:
-                call_refine_peaks(P.kernels, (y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal))
+                refine_peaks(y[:n], y[n:], y1[:n], y1[n:], h, mem, P.fint, P.freal)
             elif piece == 5:
                 acc += call_memory(P.kernels, (t + h, y1[:n], y1[n:], mem, P.fint, P.freal, P.tables))
             else:

@@ -63,13 +63,16 @@ def main(argv=None) -> None:
         for _ in range(args.rounds):
             for tree, src in trees.items():
                 runs[tree].append(one(src, joint))
-        slots = list(runs["this"][0])
+        slots = list(dict.fromkeys(s for rs in runs.values() for s in rs[0]))  # a slot of one tree: "-"
         print(f"\n{joint}: CPU [s] to compile each kernel (median of {args.rounds})")
         print(f"| slot | {' | '.join(trees)} |")
         print("|---|" + "---|" * len(trees))
         for s in [*slots, "total"]:
             cells = []
             for tree in trees:
+                if s != "total" and s not in runs[tree][0]:
+                    cells.append("-")
+                    continue
                 vals = [sum(r.values()) if s == "total" else r[s] for r in runs[tree]]
                 cells.append(f"{statistics.median(vals):.2f}")
             print(f"| {s} | {' | '.join(cells)} |")

@@ -35,7 +35,6 @@ from jointdyn.forces.journal import (
     ONSET_TOL,
     journal_kinematics,
 )
-from jointdyn.forces.kinds import kind_gate
 
 
 @njit(cache=True)
@@ -85,8 +84,12 @@ def first_root(a, b, c):
     return best
 
 
-@njit(inline="always")
-def _journal_onset_limit(q, qd, qdd, mem, fint, freal):
+@njit(cache=True)
+def onset_limit(q, qd, qdd, mem, fint, freal):
+    """Step [s] that ends where the second-order prediction δ + δ̇h + ½δ̈h² reaches half the
+    onset tolerance, for journal elements with a contact law that are not in contact [T201]
+    (inf if no onset is predicted). Independent of the model's kinds: part of the step loop
+    compiled at install, not of a kernel set [T383]."""
     h = math.inf
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == NO_CONTACT or mem[k, IN_CONTACT] > 0.5:
@@ -121,8 +124,11 @@ def hermite_peak(d0, v0, d1, v1, h):
     return p0 + th * th * (3.0 - 2.0 * th) * d1 + th * th * (th - 1.0) * h * v1
 
 
-@njit(inline="always")
-def _journal_refine_peaks(q0, qd0, q1, qd1, h, mem, fint, freal):
+@njit(cache=True)
+def refine_peaks(q0, qd0, q1, qd1, h, mem, fint, freal):
+    """Raise ``max_penetration`` of every journal element with a contact law to the peak of δ
+    inside an accepted step of length h [s] (Hermite interpolant of δ, [T202]); the step ends
+    themselves are recorded by ``elements.advance_memory``. Independent of the kinds [T383]."""
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == NO_CONTACT:
             continue
@@ -140,33 +146,3 @@ def _journal_refine_peaks(q0, qd0, q1, qd1, h, mem, fint, freal):
             p = hermite_peak(e0 - cc, v0, e1 - cc, v1, h)
             if p > mem[k, MAX_PEN]:
                 mem[k, MAX_PEN] = p
-
-
-# compiled only for a model with a journal element, like the other accepted-step hooks [T175]
-_onset_gate = kind_gate(
-    "onset_limit_gate", JOURNAL, _journal_onset_limit, ("q", "qd", "qdd", "mem", "fint", "freal"), "1e300"
-)
-_peaks_gate = kind_gate(
-    "refine_peaks_gate",
-    JOURNAL,
-    _journal_refine_peaks,
-    ("q0", "qd0", "q1", "qd1", "h", "mem", "fint", "freal"),
-    "None",
-)
-
-
-@njit(cache=True)
-def onset_limit(q, qd, qdd, mem, fint, freal, kinds=None):
-    """Step [s] that ends where the second-order prediction δ + δ̇h + ½δ̈h² reaches half the
-    onset tolerance, for journal elements with a contact law that are not in contact [T201]
-    (≥ 1e300 if no onset is predicted). ``kinds`` as in ``elements.eval_forces``."""
-    return _onset_gate(kinds, q, qd, qdd, mem, fint, freal)
-
-
-@njit(cache=True)
-def refine_peaks(q0, qd0, q1, qd1, h, mem, fint, freal, kinds=None):
-    """Raise ``max_penetration`` of every journal element with a contact law to the peak of δ
-    inside an accepted step of length h [s] (Hermite interpolant of δ, [T202]); the step ends
-    themselves are recorded by ``elements.advance_memory``. ``kinds`` as in
-    ``elements.eval_forces``."""
-    _peaks_gate(kinds, q0, qd0, q1, qd1, h, mem, fint, freal)

@@ -248,8 +248,11 @@ def _journal_memory(t, q, qd, mem, fint, freal, tables, kinds):
     return 0
 
 
-@njit(inline="always")
-def _journal_onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
+@njit(cache=True)
+def onset_fraction(q0, qd0, q1, qd1, mem, fint, freal):
+    """If a trial step ends with an unresolved contact onset (penetration above the element's
+    onset tolerance while not in contact), the fraction of the step to retry with; else 1.0.
+    Independent of the model's kinds: part of the step loop, not of a kernel set [T383]."""
     frac = 1.0
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] == _NO_CONTACT or mem[k, IN_CONTACT] > 0.5:
@@ -284,9 +287,6 @@ def _journal_step_limit(q, qd, mem, fint, freal, kinds):
 _memory_gate = kind_gate(
     "memory_gate", JOURNAL, _journal_memory, ("t", "q", "qd", "mem", "fint", "freal", "tables", "kinds_"), "0"
 )
-_onset_gate = kind_gate(
-    "onset_gate", JOURNAL, _journal_onset_fraction, ("q0", "qd0", "q1", "qd1", "mem", "fint", "freal"), "1.0"
-)
 _step_gate = kind_gate(
     "step_gate", JOURNAL, _journal_step_limit, ("q", "qd", "mem", "fint", "freal", "kinds_"), "1e300"
 )
@@ -298,13 +298,6 @@ def advance_memory(t, q, qd, mem, fint, freal, tables, kinds=None):
     temperatures [T311]; stop on film breakdown. Returns 0, FILM_BREAKDOWN or THERMAL_RANGE +
     element index. ``kinds`` as in :func:`eval_forces`."""
     return _memory_gate(kinds, t, q, qd, mem, fint, freal, tables, kinds)
-
-
-@njit(cache=True)
-def onset_fraction(q0, qd0, q1, qd1, mem, fint, freal, kinds=None):
-    """If a trial step ends with an unresolved contact onset (penetration above the element's
-    onset tolerance while not in contact), the fraction of the step to retry with; else 1.0."""
-    return _onset_gate(kinds, q0, qd0, q1, qd1, mem, fint, freal)
 
 
 @njit(cache=True)
@@ -354,8 +347,11 @@ def element_tables(elements, body_index, point_of):
     return fint, freal, tables, mem0
 
 
-@njit(inline="always")
-def _film_gap(q, qd, fint, freal, rtol, atol, qsc):
+@njit(cache=True)
+def film_gap_rows(q, qd, fint, freal, rtol, atol, qsc):
+    """0, or FILM_BREAKDOWN + k for the first journal bearing without a contact law whose film
+    is thinner than the change of |e| a state error at the tolerances can make [T115]
+    (``integrators.accuracy.film_gap_unresolved``). Independent of the kinds [T383]."""
     for k in range(fint.shape[0]):
         if fint[k, TYPE] != JOURNAL or fint[k, CONTACT] != _NO_CONTACT:
             continue
@@ -372,16 +368,3 @@ def _film_gap(q, qd, fint, freal, rtol, atol, qsc):
         if -d0 <= spread:
             return FILM_BREAKDOWN + k
     return 0
-
-
-_film_gap_gate = kind_gate(  # without journals: 0, nothing compiled [T175]
-    "film_gap_gate", JOURNAL, _film_gap, ("q", "qd", "fint", "freal", "rtol", "atol", "qsc"), "0"
-)
-
-
-@njit(cache=True)
-def film_gap_rows(q, qd, fint, freal, rtol, atol, qsc, kinds=None):
-    """0, or FILM_BREAKDOWN + k for the first journal bearing without a contact law whose film
-    is thinner than the change of |e| a state error at the tolerances can make [T115]
-    (``integrators.accuracy.film_gap_unresolved``). ``kinds`` as in :func:`eval_forces`."""
-    return _film_gap_gate(kinds, q, qd, fint, freal, rtol, atol, qsc)

@@ -1,9 +1,11 @@
 """Kernel sets: the element-kind code of a model compiled on its own and called by address [T379].
 
-Every compiled function that needs the force elements — the right-hand side, the system
-Jacobian, the accepted-step hooks of the driver, the accuracy guards — calls them through the
-eight kernels of :data:`SLOTS`. For a set of element kinds (``forces.elements.kinds_of``, with the
-journal element's laws, [T175, T229]) :func:`kernel_addresses` compiles those eight kernels with
+Every compiled function that needs the force elements of the model's kinds — the right-hand
+side, the system Jacobian, the accepted-step memory and step limit of the driver, the accuracy
+guard — calls them through the four kernels of :data:`SLOTS` (the contact-event hooks and the
+film-gap check read only a journal's geometry: they are kinds-independent functions of the step
+loop, [T383]). For a set of element kinds (``forces.elements.kinds_of``, with the
+journal element's laws, [T175, T229]) :func:`kernel_addresses` compiles those kernels with
 the kinds bound (numba closures, cached on disk per kinds) and returns their machine addresses
 as an int64 array; the packed system carries that array (``Packed.kernels``) and the callers
 reach a kernel through ``call_<slot>(kernels, (arguments…))`` (a numba intrinsic: an indirect call
@@ -13,7 +15,7 @@ call's).
 The type of the packed system is therefore the same for every model: the driver, the step
 attempts of each method, the right-hand side, the output samples and the projection are
 compiled once per method and shared by all models; a new combination of kinds compiles only its
-eight kernels (before, every function taking the packed system was specialised on the kinds and
+kernels (before, every function taking the packed system was specialised on the kinds and
 a new combination compiled the whole chain again, [T374]). The addresses belong to this process:
 a packed system is rebuilt, not pickled, in another process (``Packed.__reduce__``).
 """
@@ -26,9 +28,8 @@ from numba.core import cgutils
 from numba.core.errors import TypingError
 from numba.extending import intrinsic
 
-from jointdyn.forces.contact_events import onset_limit, refine_peaks
 from jointdyn.forces.element_jacobians import force_jacobian
-from jointdyn.forces.elements import advance_memory, eval_forces, film_gap_rows, onset_fraction, step_limit
+from jointdyn.forces.elements import advance_memory, eval_forces, step_limit
 
 _F = types.float64
 _I = types.int64
@@ -42,17 +43,13 @@ SLOTS = {
     "forces": types.none(_F, _V, _V, _M, _FINT, _M, _TABLES, _V, _M),
     "jacobian": _I(_F, _V, _V, _M, _FINT, _M, _TABLES, _M, _M, _V),
     "memory": _I(_F, _V, _V, _M, _FINT, _M, _TABLES),
-    "onset_fraction": _F(_V, _V, _V, _V, _M, _FINT, _M),
     "step_limit": _F(_V, _V, _M, _FINT, _M),
-    "onset_limit": _F(_V, _V, _V, _M, _FINT, _M),
-    "refine_peaks": types.none(_V, _V, _V, _V, _F, _M, _FINT, _M),
-    "film_gap": _I(_V, _V, _FINT, _M, _F, _F, _V),
 }
 INDEX = {name: i for i, name in enumerate(SLOTS)}
 
 
 def _kernels(kinds):
-    """The eight kernels with ``kinds`` bound (a closure's cell enters numba's cache key, so the
+    """The kernels of :data:`SLOTS` with ``kinds`` bound (a closure's cell enters numba's cache key, so the
     disk cache holds one compiled kernel per kinds)."""
 
     @njit(cache=True)
@@ -68,26 +65,10 @@ def _kernels(kinds):
         return advance_memory(t, q, qd, mem, fint, freal, tables, kinds)
 
     @njit(cache=True)
-    def fraction(q0, qd0, q1, qd1, mem, fint, freal):
-        return onset_fraction(q0, qd0, q1, qd1, mem, fint, freal, kinds)
-
-    @njit(cache=True)
     def limit(q, qd, mem, fint, freal):
         return step_limit(q, qd, mem, fint, freal, kinds)
 
-    @njit(cache=True)
-    def onset(q, qd, qdd, mem, fint, freal):
-        return onset_limit(q, qd, qdd, mem, fint, freal, kinds)
-
-    @njit(cache=True)
-    def peaks(q0, qd0, q1, qd1, h, mem, fint, freal):
-        refine_peaks(q0, qd0, q1, qd1, h, mem, fint, freal, kinds)
-
-    @njit(cache=True)
-    def gap(q, qd, fint, freal, rtol, atol, qsc):
-        return film_gap_rows(q, qd, fint, freal, rtol, atol, qsc, kinds)
-
-    return (forces, jacobian, memory, fraction, limit, onset, peaks, gap)
+    return (forces, jacobian, memory, limit)
 
 
 _SETS: dict = {}  # kinds -> (addresses, dispatchers): the dispatchers keep the code alive
@@ -179,8 +160,4 @@ def _caller(slot: str):
 call_forces = _caller("forces")
 call_jacobian = _caller("jacobian")
 call_memory = _caller("memory")
-call_onset_fraction = _caller("onset_fraction")
 call_step_limit = _caller("step_limit")
-call_onset_limit = _caller("onset_limit")
-call_refine_peaks = _caller("refine_peaks")
-call_film_gap = _caller("film_gap")

@@ -20,7 +20,7 @@ are never typed, lowered or optimised.
 The machinery (generated ``@overload`` functions) is :mod:`jointdyn.core.dispatch`, shared with
 the law dispatch of the film models, contact and friction laws [T229].
 
-The functions taking ``kinds`` are compiled per combination of kinds only in the eight kernels
+The functions taking ``kinds`` are compiled per combination of kinds only in the four kernels
 of :mod:`jointdyn.forces.kernel_set` (closures over the kinds, cached on disk per kinds); the
 driver, the methods and the right-hand side reach them by address and are compiled once for all
 models [T379].
@@ -84,7 +84,7 @@ def kind_switch(
 def kind_gate(name: str, code: int, kernel: Callable, args: Sequence[str], default: str):
     """A compiled ``name(kinds, *args)``: ``kernel(*args)`` if ``kinds`` contains ``code`` (or is
     None), else the constant expression ``default`` without compiling ``kernel`` (e.g. the
-    contact-onset checks of journal elements in a model that has none)."""
+    contact memory of journal elements in a model that has none)."""
     arglist = ", ".join(args)
 
     def build(kinds):

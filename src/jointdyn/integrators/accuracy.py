@@ -20,9 +20,9 @@ from numba import njit
 
 from jointdyn.core.layout import TYPE
 from jointdyn.core.precompiled import call
-from jointdyn.forces.elements import NOUT
+from jointdyn.forces.elements import NOUT, film_gap_rows
 from jointdyn.forces.journal import JOURNAL
-from jointdyn.forces.kernel_set import call_film_gap, call_forces
+from jointdyn.forces.kernel_set import call_forces
 
 FX, FY = 4, 5  # element output columns of the force on body j (forces.elements.OUT_COLUMNS)
 
@@ -63,7 +63,7 @@ def film_gap_unresolved(q, qd, P, rtol, atol, qsc):
     integration then cannot tell the film from ξ ≥ 1 (breakdown). rtol = 0: no check."""
     if rtol <= 0.0:
         return 0
-    return call_film_gap(P.kernels, (q, qd, P.fint, P.freal, rtol, atol, qsc))  # 0 without journals [T175]
+    return film_gap_rows(q, qd, P.fint, P.freal, rtol, atol, qsc)  # 0 without journals [T383]
 
 
 @njit(cache=True)

@@ -33,6 +33,8 @@ from jointdyn.core.arrays import copy_matrix, copy_vector
 from jointdyn.core.borrowed import borrowed
 from jointdyn.core.precompiled import call
 from jointdyn.forces import kernel_set as ks
+from jointdyn.forces.contact_events import onset_limit, refine_peaks
+from jointdyn.forces.elements import onset_fraction
 from jointdyn.integrators.common import (
     MAX_STEPS,
     OK,
@@ -258,7 +260,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                 ictl[AGE] = 0
             q, qd, fint, freal = y[:n], y[n:], P.fint, P.freal
             h = min(h, hmax, ks.call_step_limit(P.kernels, (q, qd, mem, fint, freal)))
-            h = min(h, ks.call_onset_limit(P.kernels, (q, qd, w.f0[n:], mem, fint, freal)))  # onset [T201]
+            h = min(h, onset_limit(q, qd, w.f0[n:], mem, fint, freal))  # onset [T201]
             h_prop = h
             if LAND == 1:  # no dense output: land on the next output time
                 if iout < nout and t + h >= t_out[iout] - 1e-14 * abs(t_out[iout]):
@@ -280,7 +282,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
                     h *= 0.25
                 h = _rejected(res, h, en, ctl, ictl, stats, reuse)
                 continue
-            frac = ks.call_onset_fraction(P.kernels, (q, qd, y1[:n], y1[n:], mem, fint, freal))
+            frac = onset_fraction(q, qd, y1[:n], y1[n:], mem, fint, freal)
             if frac < 1.0:
                 stats[2] += 1
                 h *= max(frac, 0.01)
@@ -291,7 +293,7 @@ def _template(LAND, FSAL, JAC, EXACT, AT_ACCEPT, REUSE):
             # outputs in (t, t_new] from the continuous extension (before the accepted-step hooks)
             if LAND == 0:
                 iout = _dense(t, t_new, y, w.f0, y1, w.K, mem, ctl, ictl, t_out, iout, w.Y, w.MEM)
-            ks.call_refine_peaks(P.kernels, (q, qd, y1[:n], y1[n:], h, mem, fint, freal))  # [T202]
+            refine_peaks(q, qd, y1[:n], y1[n:], h, mem, fint, freal)  # [T202]
             copy_vector(y, y1)
             t = t_new
             stats[1] += 1

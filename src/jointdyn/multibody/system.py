@@ -35,7 +35,7 @@ class Packed(NamedTuple):
     ws: np.ndarray
     """preallocated float workspace (``dynamics.workspace_size``)"""
     kernels: np.ndarray
-    """(8,) int64 addresses of the element kernels compiled for the system's kinds
+    """(4,) int64 addresses of the element kernels compiled for the system's kinds
     (``forces.kernel_set``, [T379]): process-local, so a packed system is not pickled"""
 
     def __reduce__(self):
