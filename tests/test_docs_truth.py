@@ -79,5 +79,5 @@ def test_every_install_page_makes_the_venv_first_and_states_the_test_duration():
     for page in ("README.md", "docs/index.md", "docs/getting-started.md"):
         text = " ".join((ROOT / page).read_text(encoding="utf-8").split())
         assert VENV in text and "PEP 668" in text, page
-        assert "900 CPU-seconds" in text and "3 min warm" in text, page
+        assert "650 CPU-seconds" in text and "3 min warm" in text, page
     assert _bash_blocks((ROOT / "README.md").read_text(encoding="utf-8"))[0] == VENV
