@@ -24,8 +24,10 @@ class BuildLoops(build_ext):
     def build_extension(self, ext):
         out = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(out), exist_ok=True)
+        # pip's isolated build environment reaches its packages through PYTHONPATH: keep it
+        path = os.pathsep.join(p for p in (SRC, os.environ.get("PYTHONPATH", "")) if p)
         with tempfile.TemporaryDirectory() as cache:  # the build's own numba cache, not the user's
-            env = {**os.environ, "PYTHONPATH": SRC, "NUMBA_CACHE_DIR": cache}
+            env = {**os.environ, "PYTHONPATH": path, "NUMBA_CACHE_DIR": cache}
             code = f"from jointdyn.integrators.aot import build; build({out!r})"
             r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
         if r.returncode != 0:
