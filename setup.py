@@ -24,11 +24,19 @@ class BuildLoops(build_ext):
     def build_extension(self, ext):
         out = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(out), exist_ok=True)
-        # pip's isolated build environment reaches its packages through PYTHONPATH: keep it
-        path = os.pathsep.join(p for p in (SRC, os.environ.get("PYTHONPATH", "")) if p)
+        # the sources go first on sys.path inside the child: pip's isolated build environment
+        # reaches its packages through PYTHONPATH (kept as it is) and its sitecustomize drops the
+        # paths of the running interpreter's site-packages (an installed jointdyn's among them)
         with tempfile.TemporaryDirectory() as cache:  # the build's own numba cache, not the user's
-            env = {**os.environ, "PYTHONPATH": path, "NUMBA_CACHE_DIR": cache}
-            code = f"from jointdyn.integrators.aot import build; build({out!r})"
+            env = {**os.environ, "NUMBA_CACHE_DIR": cache}
+            code = "\n".join(
+                (
+                    "import sys",
+                    f"sys.path.insert(0, {SRC!r})",
+                    "from jointdyn.integrators import aot",
+                    f"aot.build({out!r})",
+                )
+            )
             r = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
         if r.returncode != 0:
             tail = "\n".join(r.stderr.strip().splitlines()[-5:])

@@ -10,12 +10,12 @@ once, when the package is built (``setup.py``, numba's ``pycc``), into the exten
 kernel sets stay compiled at first use and are called by address from the compiled loop exactly
 as from the just-in-time one.
 
-The module is used only when it was built from these sources by this numba (:func:`build_key`,
-exported by the module as ``key``) and a call's argument types (callers use
-:func:`jointdyn.core.precompiled.call`) are those it was built for
-(:func:`types_of`); otherwise the function is compiled just in time as before. Building needs a C
-compiler; where the build fails the package installs without the module and runs just in time.
-:func:`status` says which case holds (``jointdyn cache info``).
+The module is used only when it was built from these sources, by this numba, for this CPU
+(:func:`build_key`, exported by the module as ``key``), and for a call whose argument types are
+those it was built for (:func:`compiled`; callers use :func:`jointdyn.core.precompiled.call`);
+otherwise the function is compiled just in time as before. Building needs a C compiler; where
+the build fails the package installs without the module and runs just in time. :func:`status`
+says which case holds (``jointdyn cache info``).
 """
 
 from __future__ import annotations
@@ -140,16 +140,22 @@ def _names() -> dict:
     return {fn: name for name, (fn, _) in entries().items()}
 
 
+_unusable = ["built from other sources, by another numba or for another CPU"]
+
+
 @cache
 def _module():
-    """The compiled module if present and built from these sources by this numba; None if absent,
-    False if stale."""
+    """The compiled module if present, loadable and built for these sources, this numba and this
+    CPU; None if absent, False if not usable (the reason in ``_unusable``)."""
     import importlib
 
     try:
         mod = importlib.import_module(MODULE)
-    except Exception:  # absent, or not loadable here: compile at first use
+    except ModuleNotFoundError:
         return None
+    except Exception as err:  # present but not loadable here: compile at first use, and say why
+        _unusable[0] = f"present but not loadable ({err})"
+        return False
     return mod if mod.key() == build_key() else False
 
 
@@ -160,7 +166,7 @@ def status() -> str:
     if mod is None:
         return f"not built at install: the step loops ({loops}) compile at first use"
     if mod is False:
-        return f"built from other sources or another numba: the step loops ({loops}) compile at first use"
+        return f"{_unusable[0]}: the step loops ({loops}) compile at first use"
     return f"compiled at install: the step loops ({loops}), the output samples and the assembly"
 
 
